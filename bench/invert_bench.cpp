@@ -1,0 +1,137 @@
+// Points per second: the engine's batched `invert` against "the paper's way" (Marco & Martinez
+// Sect. 3 and 5, as a straightforward implementation would do it per point: form p and q, build the
+// Bernstein-Bezout matrix with the printed Bini-Gemignani recurrence over the whole matrix, take a
+// general SVD (Eigen::JacobiSVD, as the paper's MATLAB svd), read t from the last right singular
+// vector). Both see the same 64 curves x 1024 points per degree, cycled so that no curve's plan or
+// points stay cache-hot between iterations (one iteration = one curve's 1024 points).
+//
+// The paper's way gives only the algebraic t (no refinement, no status); compare it with
+// Engine/algebraic (refine = false) for the cost of the method, and with Engine/refined for the cost
+// of the full answer. All single-threaded except Engine/refined_all_cores.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/SVD>
+#include <cmath>
+#include <map>
+#include <random>
+#include <vector>
+
+#include "bezinv/datasets/on_curve_points.hpp"
+#include "bezinv/datasets/random_curve.hpp"
+#include "bezinv/datasets/random_numbers.hpp"
+#include "bezinv/invert.hpp"
+#include "bezinv/plan.hpp"
+
+namespace {
+
+using namespace bezinv;
+
+constexpr int kCurves = 64;
+constexpr int kPointsPerCurve = 1024;
+
+struct Workload {
+  std::vector<Curve> curves;
+  std::vector<InversionPlan> plans;
+  std::vector<std::vector<Point>> points;  // kPointsPerCurve per curve, t uniform in [0,1]
+};
+
+// Random rational Bezier curves (the paper's Sect. 3 setting) on perturbed arcs, built once per degree.
+const Workload& workload(int degree) {
+  static std::map<int, Workload> cache;
+  auto [it, inserted] = cache.try_emplace(degree);
+  Workload& w = it->second;
+  if (inserted) {
+    std::mt19937_64 rng(4242 + degree);
+    for (int c = 0; c < kCurves; ++c) {
+      w.curves.push_back(datasets::random_curve(CurveKind::rational_bezier, degree, rng,
+                                                datasets::ControlPolygon::perturbed_arc));
+      w.plans.push_back(make_plan(w.curves.back()));
+      std::vector<Point> pts(kPointsPerCurve);
+      for (Point& p : pts) p = datasets::on_curve(w.curves.back(), datasets::uniform(rng, 0.0, 1.0));
+      w.points.push_back(std::move(pts));
+    }
+  }
+  return w;
+}
+
+// ---- the engine ------------------------------------------------------------------------------------
+
+void run_engine(benchmark::State& state, bool refine, int threads) {
+  const Workload& w = workload(static_cast<int>(state.range(0)));
+  std::vector<PointResult> results(kPointsPerCurve);
+  const InvertOptions options{.refine = refine, .threads = threads};
+  int c = 0;
+  for (auto _ : state) {
+    invert(w.plans[c], w.points[c], results, options);
+    benchmark::DoNotOptimize(results.data());
+    benchmark::ClobberMemory();
+    c = (c + 1) % kCurves;
+  }
+  state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
+}
+
+void BM_Engine_refined(benchmark::State& state) { run_engine(state, true, 1); }
+void BM_Engine_algebraic(benchmark::State& state) { run_engine(state, false, 1); }
+void BM_Engine_refined_all_cores(benchmark::State& state) { run_engine(state, true, 0); }
+
+// ---- the paper's way -------------------------------------------------------------------------------
+
+// The Bini-Gemignani recurrence exactly as printed in the paper (Maple, 1-based B[1..n, 1..n],
+// p[0..n], q[0..n]), over the whole matrix.
+void printed_bezout_recurrence(const double* p, const double* q, int n, Eigen::MatrixXd& B) {
+  auto b = [&](int i, int j) -> double& { return B(i - 1, j - 1); };
+  for (int i = 1; i <= n; ++i) b(i, 1) = (static_cast<double>(n) / i) * (p[i] * q[0] - p[0] * q[i]);
+  for (int j = 1; j <= n - 1; ++j) b(n, j + 1) = (static_cast<double>(n) / (n - j)) * (p[n] * q[j] - p[j] * q[n]);
+  for (int j = 1; j <= n - 1; ++j)
+    for (int i = 1; i <= n - 1; ++i)
+      b(i, j + 1) = (static_cast<double>(n) * n / (static_cast<double>(i) * (n - j))) * (p[i] * q[j] - p[j] * q[i]) +
+                    (static_cast<double>(j) * (n - i) / (static_cast<double>(i) * (n - j))) * b(i + 1, j);
+}
+
+// The paper's read-out: the largest component of z, the larger of its two neighbours, and
+// t = i z_i / (i z_i + (N+1-i) z_{i-1}) with N + 1 = z.size().
+double paper_read_out(const Eigen::VectorXd& z) {
+  const int size = static_cast<int>(z.size());
+  int k = 0;
+  for (int i = 1; i < size; ++i)
+    if (std::abs(z[i]) > std::abs(z[k])) k = i;
+  int i = k;  // the pair (z_{i-1}, z_i)
+  if (k == 0 || (k + 1 < size && std::abs(z[k + 1]) > std::abs(z[k - 1]))) i = k + 1;
+  return i * z[i] / (i * z[i] + (size - i) * z[i - 1]);
+}
+
+void BM_Paper_printed_recurrence_JacobiSVD(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Workload& w = workload(n);
+  Eigen::MatrixXd B(n, n);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(n, n, Eigen::ComputeFullV);  // allocated once, reused
+  std::vector<double> p(n + 1), q(n + 1), t(kPointsPerCurve);
+  int c = 0;
+  for (auto _ : state) {
+    const Curve& curve = w.curves[c];
+    for (int k = 0; k < kPointsPerCurve; ++k) {
+      const Point P0 = w.points[c][k];
+      // Paper Sect. 3: p = sum w_i a_i beta_i - x0 sum w_i beta_i, q likewise with b_i, y0.
+      for (int i = 0; i <= n; ++i) {
+        p[i] = curve.x_num[i] - P0.x * curve.x_den[i];
+        q[i] = curve.y_num[i] - P0.y * curve.y_den[i];
+      }
+      printed_bezout_recurrence(p.data(), q.data(), n, B);
+      svd.compute(B, Eigen::ComputeFullV);
+      t[k] = paper_read_out(svd.matrixV().col(n - 1));
+    }
+    benchmark::DoNotOptimize(t.data());
+    benchmark::ClobberMemory();
+    c = (c + 1) % kCurves;
+  }
+  state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
+}
+
+#define BEZINV_DEGREES ->Arg(3)->Arg(5)->Arg(8)->Arg(15)->Arg(20)->Unit(benchmark::kMicrosecond)
+BENCHMARK(BM_Engine_refined) BEZINV_DEGREES;
+BENCHMARK(BM_Engine_algebraic) BEZINV_DEGREES;
+BENCHMARK(BM_Engine_refined_all_cores) BEZINV_DEGREES->UseRealTime();
+BENCHMARK(BM_Paper_printed_recurrence_JacobiSVD) BEZINV_DEGREES;
+#undef BEZINV_DEGREES
+
+}  // namespace

@@ -1,0 +1,48 @@
+#pragma once
+// A plane rational curve in Bernstein form on [0,1]:
+//     x(t) = x_num(t) / x_den(t),   y(t) = y_num(t) / y_den(t),
+// all four of one common degree n. The three kinds users write are all stored this way:
+//   bezier           x_num = a_i, y_num = b_i, x_den = y_den = 1
+//   rational_bezier  x_num = w_i a_i, y_num = w_i b_i, x_den = y_den = w_i
+//   rational         the four lists as given (paper Sect. 4: separate denominators)
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace bezinv {
+
+enum class CurveKind { bezier, rational_bezier, rational };
+
+const char* to_string(CurveKind kind);
+
+struct Curve {
+  std::string id;
+  CurveKind kind = CurveKind::bezier;
+  std::vector<double> x_num, x_den, y_num, y_den;  // n+1 Bernstein coefficients each
+
+  int degree() const { return static_cast<int>(x_num.size()) - 1; }
+  // True when x_den == y_den coefficient by coefficient (then B(x0,y0) is affine in (x0,y0)).
+  bool common_denominator() const { return x_den == y_den; }
+
+  // P(t). Valid for t outside [0,1] too (the curve's extension), NaN where a denominator is 0.
+  std::array<double, 2> point(double t) const;
+
+  static Curve bezier(std::string id, const std::vector<std::array<double, 2>>& points);
+  static Curve rational_bezier(std::string id, const std::vector<std::array<double, 2>>& points,
+                               const std::vector<double>& weights);
+  static Curve rational(std::string id, std::vector<double> x_num, std::vector<double> x_den,
+                        std::vector<double> y_num, std::vector<double> y_den);
+};
+
+// A curve that cannot be used at all. what() names the curve and the field.
+class CurveError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws CurveError unless: every number finite, degree 1..kMaxDegree, the four lists of one
+// length, and no denominator with a root on [0,1] (a pole inside the segment).
+void validate(const Curve& curve);
+
+}  // namespace bezinv

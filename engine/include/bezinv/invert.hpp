@@ -1,0 +1,65 @@
+#pragma once
+// Inverting points: the answer for each point, with its evidence.
+#include <cstdint>
+#include <limits>
+#include <span>
+
+#include "bezinv/plan.hpp"
+#include "bezinv/tolerances.hpp"
+
+namespace bezinv {
+
+enum class Status : std::uint8_t {
+  ok,               // on the segment within the tolerance (ends included)
+  outside_segment,  // on the curve's extension: t outside [0,1], within the tolerance
+  double_point,     // on the segment at two parameters: t < t2 (a self-intersection)
+  off_curve,        // farther than the tolerance: t is the parameter of the nearest point of the segment
+  invalid_input,    // non-finite coordinate, unknown curve, index past the end (set by the I/O layer)
+  failed,           // the curve or point defeats the method (reason says why); never a silent wrong t
+};
+const char* to_string(Status status);
+
+// Which computation produced t.
+enum class Path : std::uint8_t {
+  none,
+  bezout,       // null vector of the Bezout matrix (paper Sect. 3)
+  bezout_pair,  // two-dimensional null space of the Bezout matrix (double point / near degree drop)
+  sylvester,    // Sylvester matrix at the true degrees of p and q (paper Sect. 4)
+  nearest,      // nearest-point search on the segment (point off the curve)
+};
+const char* to_string(Path path);
+
+struct PointResult {
+  static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  double t = nan;
+  double t2 = nan;          // second parameter for double_point
+  double residual = nan;    // |P(t) - P0| in input units (nan when t is nan)
+  double sigma_min = nan;   // sigma_n / sigma_1 of B: how singular B is at this point
+  double sigma_next = nan;  // sigma_{n-1} / sigma_1: the gap that separates nullity 1 from nullity 2
+  Status status = Status::failed;
+  Path path = Path::none;
+  const char* reason = "";  // static text: why failed / invalid_input, empty otherwise
+};
+
+struct InvertOptions {
+  double relative_tolerance = kDefaultRelativeTolerance;  // x the control-point bounding-box diagonal
+  bool refine = true;  // Newton to the nearest point at full precision; false = the paper's algebraic t
+  int threads = 0;     // 0: all cores
+};
+
+struct Point { double x, y; };
+
+// One point (the reference path: everything else must agree with it).
+PointResult invert_point(const InversionPlan& plan, Point point, const InvertOptions& options = {});
+
+// Many points of one curve, in parallel; results[i] answers points[i].
+void invert(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
+            const InvertOptions& options = {});
+
+// Many points of many curves: curve_of[i] indexes plans, or is negative for a point the I/O layer
+// already rejected (then results[i] is left as the caller set it).
+void invert(std::span<const InversionPlan> plans, std::span<const int> curve_of,
+            std::span<const Point> points, std::span<PointResult> results,
+            const InvertOptions& options = {});
+
+}  // namespace bezinv

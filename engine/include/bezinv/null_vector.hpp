@@ -1,0 +1,32 @@
+#pragma once
+// Reading parameters back from null vectors of a resultant matrix.
+// If z = alpha * (beta_0^{(N)}(t), ..., beta_N^{(N)}(t)) with N = size-1, consecutive components
+// satisfy  z_i / z_{i-1} = (N+1-i) t / (i (1-t)),  hence (Marco & Martinez Sect. 3)
+//     t = i z_i / (i z_i + (N+1-i) z_{i-1}).
+#include <span>
+
+namespace bezinv {
+
+// The paper's read-out: the component of largest magnitude, and of its two neighbours the larger
+// one (the largest components are the least sensitive to perturbations, Demmel et al. 2008).
+// z.size() >= 2. Returns NaN when the two components are both zero.
+double parameter_from_null_vector(std::span<const double> z);
+
+// Index i (1 <= i <= size-1) of the pair (z_{i-1}, z_i) that parameter_from_null_vector uses.
+int null_vector_pair(std::span<const double> z);
+
+// How far z is from the Bernstein form: the sine of the angle between z and the basis vector
+// beta^{(N)}(t). Near 0 when z really is a (scaled) basis vector; a random mix of two basis
+// vectors (nullity 2) gives an O(1) value. Scale-invariant.
+double bernstein_form_defect(std::span<const double> z, double t);
+
+// Two-dimensional null space spanned by u and v (same size N+1 >= 3): find the parameters t with
+// beta^{(N)}(t) in span{u, v}. Each column c = a u + b v must satisfy, for i = 1..N,
+//     i (1-t) c_i - (N+1-i) t c_{i-1} = 0,
+// a rectangular pencil A c = t (A + D) c with A_i = i c_i and D_i = (N+1-i) c_{i-1}. It is squared up
+// by least squares (multiplying by (A + D)^T) into a 2x2 generalized eigenproblem. Writes the real
+// finite roots to t (at most 2) and returns how many there are. A root at infinity (a degree drop)
+// or a complex pair is not returned.
+int parameters_from_null_space(std::span<const double> u, std::span<const double> v, double t[2]);
+
+}  // namespace bezinv

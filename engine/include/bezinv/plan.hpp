@@ -1,0 +1,67 @@
+#pragma once
+// The per-curve precomputation ("plan"). Everything that does not depend on the point is done once
+// here, so that inverting a point costs: form B from four fixed matrices, one symmetric SVD, a read-out.
+//
+// For a point (x0, y0), with p = X_num - x0 X_den and q = Y_num - y0 Y_den, bilinearity and
+// antisymmetry of the Bezoutian give
+//     B(x0, y0) = Bez(X_num, Y_num) - x0 Bez(X_den, Y_num) - y0 Bez(X_num, Y_den) + x0 y0 Bez(X_den, Y_den)
+//               =        B0         - x0        Bx          - y0        By          + x0 y0     Bxy,
+// with Bxy = Bez(W, W) = 0 when the denominators are one W (rational Bezier), so B is affine there.
+#include <array>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "bezinv/curve.hpp"
+
+namespace bezinv {
+
+struct InversionPlan {
+  Curve curve;          // as given (validated)
+  int input_degree = 0; // degree as given
+  int degree = 0;       // effective degree n after exact reduction of a degree-elevated curve
+
+  // Normalization: u = R (P - centre) / scale, with R a rotation (identity for separate
+  // denominators, which a rotation would mix); each numerator/denominator pair is also divided by
+  // its largest denominator coefficient. Translation and rotation leave B unchanged in exact
+  // arithmetic (Bez is alternating: a unimodular change of (p, q) multiplies it by det = 1); the
+  // scale and the denominator division multiply it by 1/(scale^2 max|x_den| max|y_den|). So the
+  // null vectors, the singular-value ratios and the algebraic parameter are the same; in floating point the
+  // affine combination below no longer cancels digits for curves far from the origin, and a line
+  // parallel to an axis no longer makes p identically zero.
+  std::array<double, 2> centre{0.0, 0.0};
+  double scale = 1.0;
+  double cos_rotation = 1.0, sin_rotation = 0.0;
+
+  // The normalized curve at the effective degree (n+1 coefficients each).
+  std::vector<double> x_num, x_den, y_num, y_den;
+  bool common_denominator = true;
+
+  // B(u0, v0) = B0 - u0 Bx - v0 By + u0 v0 Bxy in normalized coordinates (n x n, row-major).
+  std::vector<double> B0, Bx, By, Bxy;
+
+  // Power-basis leading coefficients of the four polynomials and their size bounds, for
+  // detecting a degree drop of p and q at a given point (paper Sect. 4).
+  double lead_x_num = 0, lead_x_den = 0, lead_y_num = 0, lead_y_den = 0;
+
+  // Diagonal of the bounding box of the control points (input units): tolerances are relative to it.
+  double diagonal = 0.0;
+
+  // False when the curve cannot be inverted by this method (improperly parametrized, or every
+  // coefficient of x or y degenerate); every point of it is then reported `failed` with `reason`.
+  bool usable = true;
+  const char* reason = "";  // static text
+
+  // Input coordinates -> normalized, and back for distances.
+  std::array<double, 2> normalize(double x, double y) const;
+  // P(t) in normalized coordinates.
+  std::array<double, 2> normalized_point(double t) const;
+};
+
+// Builds the plan. Throws CurveError for a curve that fails validate().
+InversionPlan make_plan(const Curve& curve);
+
+// B(u0, v0) from the plan's matrices, for a point already in normalized coordinates.
+void bezout_at(const InversionPlan& plan, double u0, double v0, std::span<double> out);
+
+}  // namespace bezinv

@@ -1,0 +1,137 @@
+#include "bezinv/curve.hpp"
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "bezinv/bernstein.hpp"
+#include "bezinv/tolerances.hpp"
+
+namespace bezinv {
+
+const char* to_string(CurveKind kind) {
+  switch (kind) {
+    case CurveKind::bezier: return "bezier";
+    case CurveKind::rational_bezier: return "rational_bezier";
+    case CurveKind::rational: return "rational";
+  }
+  return "?";
+}
+
+std::array<double, 2> Curve::point(double t) const {
+  return {bernstein_value(x_num, t) / bernstein_value(x_den, t),
+          bernstein_value(y_num, t) / bernstein_value(y_den, t)};
+}
+
+Curve Curve::bezier(std::string id, const std::vector<std::array<double, 2>>& points) {
+  Curve c;
+  c.id = std::move(id);
+  c.kind = CurveKind::bezier;
+  for (const auto& p : points) {
+    c.x_num.push_back(p[0]);
+    c.y_num.push_back(p[1]);
+  }
+  c.x_den.assign(points.size(), 1.0);
+  c.y_den = c.x_den;
+  return c;
+}
+
+Curve Curve::rational_bezier(std::string id, const std::vector<std::array<double, 2>>& points,
+                             const std::vector<double>& weights) {
+  Curve c;
+  c.id = std::move(id);
+  c.kind = CurveKind::rational_bezier;
+  if (weights.size() != points.size())
+    throw CurveError("curve \"" + c.id + "\": weights: " + std::to_string(weights.size()) +
+                     " weights for " + std::to_string(points.size()) + " points");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    // Homogeneous form: the numerators carry w_i a_i, so P = X/W with one denominator W.
+    c.x_num.push_back(weights[i] * points[i][0]);
+    c.y_num.push_back(weights[i] * points[i][1]);
+  }
+  c.x_den = weights;
+  c.y_den = weights;
+  return c;
+}
+
+Curve Curve::rational(std::string id, std::vector<double> x_num, std::vector<double> x_den,
+                      std::vector<double> y_num, std::vector<double> y_den) {
+  Curve c;
+  c.id = std::move(id);
+  c.kind = CurveKind::rational;
+  c.x_num = std::move(x_num);
+  c.x_den = std::move(x_den);
+  c.y_num = std::move(y_num);
+  c.y_den = std::move(y_den);
+  return c;
+}
+
+namespace {
+
+// True when the Bernstein polynomial has a root on [0,1] (or comes within round-off of one).
+// Bernstein coefficients of one strict sign bound the polynomial away from zero (convex hull
+// property); otherwise subdivide at 1/2 (de Casteljau) and look at each half. A sign change of
+// the values at the ends of a piece is a root; a piece still undecided after 40 halvings
+// (width 1e-12) is a double root or a root within round-off: reported as a root too.
+bool has_root_on_unit_interval(const std::vector<double>& coefficients) {
+  struct Piece { std::vector<double> c; int depth; };
+  std::vector<Piece> stack{{coefficients, 0}};
+  while (!stack.empty()) {
+    Piece piece = std::move(stack.back());
+    stack.pop_back();
+    const auto& c = piece.c;
+    bool all_positive = true, all_negative = true;
+    for (double v : c) {
+      all_positive = all_positive && v > 0;
+      all_negative = all_negative && v < 0;
+    }
+    if (all_positive || all_negative) continue;
+    if (c.front() == 0.0 || c.back() == 0.0) return true;
+    if ((c.front() > 0) != (c.back() > 0)) return true;
+    if (piece.depth >= 40) return true;
+    // Split at 1/2: the left half's coefficients are the first points of each de Casteljau
+    // level, the right half's the last ones.
+    const int n = static_cast<int>(c.size()) - 1;
+    std::vector<double> left(n + 1), right(n + 1), work = c;
+    left[0] = work[0];
+    right[n] = work[n];
+    for (int r = 1; r <= n; ++r) {
+      for (int i = 0; i <= n - r; ++i) work[i] = 0.5 * (work[i] + work[i + 1]);
+      left[r] = work[0];
+      right[n - r] = work[n - r];
+    }
+    stack.push_back({std::move(left), piece.depth + 1});
+    stack.push_back({std::move(right), piece.depth + 1});
+  }
+  return false;
+}
+
+}  // namespace
+
+void validate(const Curve& curve) {
+  const std::string who = "curve \"" + curve.id + "\": ";
+  const std::size_t size = curve.x_num.size();
+  if (size < 2)
+    throw CurveError(who + "degree must be at least 1 (" + std::to_string(size) + " coefficients given)");
+  if (static_cast<int>(size) - 1 > kMaxDegree)
+    throw CurveError(who + "degree " + std::to_string(size - 1) + " exceeds the maximum " +
+                     std::to_string(kMaxDegree));
+  const std::pair<const char*, const std::vector<double>*> fields[] = {
+      {"x_num", &curve.x_num}, {"x_den", &curve.x_den}, {"y_num", &curve.y_num}, {"y_den", &curve.y_den}};
+  for (const auto& [name, values] : fields) {
+    if (values->size() != size)
+      throw CurveError(who + name + ": " + std::to_string(values->size()) + " coefficients, expected " +
+                       std::to_string(size) + " (one common degree)");
+    for (std::size_t i = 0; i < size; ++i)
+      if (!std::isfinite((*values)[i]))
+        throw CurveError(who + name + "[" + std::to_string(i) + "] is not a finite number");
+  }
+  const char* den_field = curve.kind == CurveKind::rational ? "x_den" : "weights";
+  if (has_root_on_unit_interval(curve.x_den))
+    throw CurveError(who + den_field + ": the denominator has a root on [0,1] (the curve has a pole on its segment)");
+  if (curve.kind == CurveKind::rational && has_root_on_unit_interval(curve.y_den))
+    throw CurveError(who + "y_den: the denominator has a root on [0,1] (the curve has a pole on its segment)");
+}
+
+}  // namespace bezinv

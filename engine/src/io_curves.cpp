@@ -1,0 +1,335 @@
+// CURVES.json -> std::vector<Curve> (format in bezinv/io.hpp).
+//
+// The file is parsed through nlohmann's SAX interface rather than json::parse so that every error
+// can say where it is: json::parse reports a number that overflows a double ("1e999") as an
+// out_of_range exception with no position at all, and silently keeps the last of two equal keys.
+// The SAX builder below knows the path it is inside (curves[2].points[1][0]) when either happens.
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bezinv/io.hpp"
+
+namespace bezinv {
+namespace {
+
+using json = nlohmann::json;
+
+[[noreturn]] void fail(const std::string& where, const std::string& problem) {
+  throw InputError(where + ": " + problem);
+}
+
+// The whole file in one string. (io_points.cpp has the same dozen lines: each reader is one file.)
+std::string read_whole_file(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) fail(path, std::string("cannot read: ") + std::strerror(errno));
+  std::string text;
+  char chunk[1 << 16];
+  std::size_t got = 0;
+  while ((got = std::fread(chunk, 1, sizeof chunk, file)) > 0) text.append(chunk, got);
+  // fread on a directory opens fine and fails here with EISDIR.
+  const bool failed = std::ferror(file) != 0;
+  const int error = errno;
+  std::fclose(file);
+  if (failed) fail(path, std::string("cannot read: ") + std::strerror(error));
+  return text;
+}
+
+// 1-based line of a byte offset, for errors nlohmann reports by byte only.
+std::size_t line_of(std::string_view text, std::size_t byte) {
+  byte = std::min(byte, text.size());
+  std::size_t line = 1;
+  for (std::size_t i = 0; i < byte; ++i) line += text[i] == '\n';
+  return line;
+}
+
+// Drops nlohmann's "[json.exception.parse_error.101] " tag: the reader wants the sentence.
+std::string without_exception_tag(const char* what) {
+  std::string_view message(what);
+  if (message.starts_with("[json.exception.")) {
+    const auto end = message.find("] ");
+    if (end != std::string_view::npos) message.remove_prefix(end + 2);
+  }
+  return std::string(message);
+}
+
+// Builds the DOM like json::parse, but remembers the path from the root to the value being read,
+// rejects duplicate keys, and turns parse errors into one-line InputError text.
+class LocatingBuilder : public nlohmann::json_sax<json> {
+ public:
+  explicit LocatingBuilder(std::string_view text) : text_(text) {}
+
+  json root;
+  std::string error;  // set when parsing stopped
+
+  bool null() override { return add(json(nullptr)); }
+  bool boolean(bool value) override { return add(json(value)); }
+  bool number_integer(number_integer_t value) override { return add(json(value)); }
+  bool number_unsigned(number_unsigned_t value) override { return add(json(value)); }
+  bool number_float(number_float_t value, const string_t&) override { return add(json(value)); }
+  bool string(string_t& value) override { return add(json(std::move(value))); }
+  bool binary(binary_t& value) override { return add(json::binary(std::move(value))); }
+
+  bool start_object(std::size_t) override { return open(json::object()); }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(json::array()); }
+  bool end_array() override { return close(); }
+
+  bool key(string_t& key) override {
+    Frame& top = stack_.back();
+    if (top.node->contains(key)) {
+      error = path(/*pending_in_array=*/false, /*innermost_key=*/false) + ": duplicate key \"" + key + "\"";
+      return false;
+    }
+    top.key = std::move(key);
+    return true;
+  }
+
+  bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) override {
+    // 406 is nlohmann's "number overflow": a literal beyond the double range. Only here is the
+    // path exact (the offending value is the one about to be added); for syntax errors it is
+    // where the parser was, which is still the best hint.
+    if (ex.id == 406) {
+      error = "line " + std::to_string(line_of(text_, position)) + ", byte " + std::to_string(position) +
+              ": " + path(true, true) + ": " + without_exception_tag(ex.what()) + " (not a finite double)";
+    } else {
+      error = "malformed JSON at byte " + std::to_string(position) + " (near " + path(true, true) +
+              "): " + without_exception_tag(ex.what());
+    }
+    return false;
+  }
+
+ private:
+  struct Frame {
+    json* node;
+    std::string key;  // objects: the key whose value is being read
+  };
+
+  // A value goes into the innermost open container (or becomes the root).
+  json* insert(json&& value) {
+    if (stack_.empty()) {
+      root = std::move(value);
+      return &root;
+    }
+    Frame& top = stack_.back();
+    if (top.node->is_array()) {
+      top.node->push_back(std::move(value));
+      return &top.node->back();
+    }
+    json& slot = (*top.node)[top.key];
+    slot = std::move(value);
+    return &slot;
+  }
+  bool add(json&& value) {
+    insert(std::move(value));
+    return true;
+  }
+  bool open(json&& container) {
+    json* node = insert(std::move(container));
+    stack_.push_back({node, {}});
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    return true;
+  }
+
+  // "curves[2].points[1][0]". pending_in_array: the innermost array's current element has not
+  // been inserted yet (so its index is size(), not size() - 1). innermost_key: the innermost
+  // object's current key belongs to the path (false while a new key is being read).
+  std::string path(bool pending_in_array, bool innermost_key) const {
+    std::string out;
+    for (std::size_t i = 0; i < stack_.size(); ++i) {
+      const json& node = *stack_[i].node;
+      const bool innermost = i + 1 == stack_.size();
+      if (node.is_array()) {
+        std::size_t index = node.size();
+        if (!(innermost && pending_in_array) && index > 0) --index;
+        // Appended piecewise: "[" + to_string(...) trips a GCC 12 -Wrestrict false positive.
+        out += '[';
+        out += std::to_string(index);
+        out += ']';
+      } else if (!stack_[i].key.empty() && (innermost_key || !innermost)) {
+        if (!out.empty()) out += '.';
+        out += stack_[i].key;
+      }
+    }
+    return out.empty() ? std::string("top level") : out;
+  }
+
+  std::string_view text_;
+  std::vector<Frame> stack_;
+};
+
+// "a number", "a string", ...: for "expected X, found Y" messages.
+std::string a_type_name(const json& value) {
+  const std::string name = value.type_name();
+  const bool vowel = name.find_first_of("aeiou") == 0;
+  return (vowel ? "an " : "a ") + name;
+}
+
+double number(const json& value, const std::string& where, const std::string& field) {
+  if (!value.is_number()) fail(where, field + ": expected a number, found " + a_type_name(value));
+  const double result = value.get<double>();
+  // The parser already refuses literals beyond the double range; this guards integers that
+  // nlohmann stores exactly but that could not come back as finite doubles (none today).
+  if (!std::isfinite(result)) fail(where, field + ": not a finite number");
+  return result;
+}
+
+const json& required_field(const json& curve, const char* field, const std::string& where) {
+  const auto it = curve.find(field);
+  if (it == curve.end()) fail(where, std::string(field) + ": missing");
+  return *it;
+}
+
+std::vector<double> number_list(const json& curve, const char* field, const std::string& where) {
+  const json& list = required_field(curve, field, where);
+  if (!list.is_array()) fail(where, std::string(field) + ": expected an array of numbers, found " + a_type_name(list));
+  if (list.empty()) fail(where, std::string(field) + ": empty list");
+  std::vector<double> out;
+  out.reserve(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i)
+    out.push_back(number(list[i], where, std::string(field) + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+std::vector<std::array<double, 2>> point_list(const json& curve, const std::string& where) {
+  const json& list = required_field(curve, "points", where);
+  if (!list.is_array()) fail(where, "points: expected an array of [x, y], found " + a_type_name(list));
+  if (list.empty()) fail(where, "points: empty list");
+  std::vector<std::array<double, 2>> out;
+  out.reserve(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string field = "points[" + std::to_string(i) + "]";
+    const json& point = list[i];
+    if (!point.is_array()) fail(where, field + ": expected [x, y], found " + a_type_name(point));
+    if (point.size() != 2)
+      fail(where, field + ": expected [x, y], found an array of " + std::to_string(point.size()));
+    out.push_back({number(point[0], where, field + "[0]"), number(point[1], where, field + "[1]")});
+  }
+  return out;
+}
+
+// Fields that belong to one kind only: giving them to another kind is a mistake we can name
+// (e.g. weights on a polynomial "bezier" would otherwise be silently ignored).
+void refuse_fields(const json& curve, std::initializer_list<const char*> fields, const char* kind,
+                   const std::string& where) {
+  for (const char* field : fields)
+    if (curve.contains(field)) fail(where, std::string(field) + ": not a field of kind \"" + kind + "\"");
+}
+
+// POINTS.csv names curves by id in a comma-separated, space-trimmed field, so such an id could
+// never be referred to by name.
+bool id_fits_points_csv(const std::string& id) {
+  if (id.find_first_of(",\"\r\n") != std::string::npos) return false;
+  const auto is_space = [](char c) { return c == ' ' || c == '\t'; };
+  return !is_space(id.front()) && !is_space(id.back());
+}
+
+Curve parse_curve(const json& entry, std::string& where) {
+  if (!entry.is_object()) fail(where, "expected an object, found " + a_type_name(entry));
+
+  const json& id_value = required_field(entry, "id", where);
+  if (!id_value.is_string()) fail(where, "id: expected a string, found " + a_type_name(id_value));
+  std::string id = id_value.get<std::string>();
+  if (id.empty()) fail(where, "id: empty");
+  where += " (id " + id_value.dump(-1, ' ', false, json::error_handler_t::replace) + ")";
+  if (!id_fits_points_csv(id))
+    fail(where, "id: must not contain commas, quotes, line breaks or surrounding spaces "
+                "(POINTS.csv refers to curves by id)");
+
+  const json& kind_value = required_field(entry, "kind", where);
+  if (!kind_value.is_string()) fail(where, "kind: expected a string, found " + a_type_name(kind_value));
+  const std::string kind = kind_value.get<std::string>();
+
+  if (kind == "bezier") {
+    refuse_fields(entry, {"weights", "x_num", "x_den", "y_num", "y_den"}, "bezier", where);
+    return Curve::bezier(std::move(id), point_list(entry, where));
+  }
+  if (kind == "rational_bezier") {
+    refuse_fields(entry, {"x_num", "x_den", "y_num", "y_den"}, "rational_bezier", where);
+    auto points = point_list(entry, where);
+    auto weights = number_list(entry, "weights", where);
+    if (weights.size() != points.size())
+      fail(where, "weights: " + std::to_string(weights.size()) + " weights for " + std::to_string(points.size()) +
+                      " points (need one per point)");
+    // The curve is stored homogeneously (w_i x_i, w_i y_i); a product beyond the double range
+    // would reach validate() as a non-finite x_num, a field the file does not have.
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (!std::isfinite(weights[i] * points[i][0]) || !std::isfinite(weights[i] * points[i][1]))
+        fail(where, "points[" + std::to_string(i) + "]: times weights[" + std::to_string(i) +
+                        "] overflows the double range");
+    return Curve::rational_bezier(std::move(id), points, weights);
+  }
+  if (kind == "rational") {
+    refuse_fields(entry, {"points", "weights"}, "rational", where);
+    auto x_num = number_list(entry, "x_num", where);
+    auto x_den = number_list(entry, "x_den", where);
+    auto y_num = number_list(entry, "y_num", where);
+    auto y_den = number_list(entry, "y_den", where);
+    // Name the first list that disagrees with x_num: that is the field to fix.
+    const std::pair<const char*, std::size_t> others[] = {
+        {"x_den", x_den.size()}, {"y_num", y_num.size()}, {"y_den", y_den.size()}};
+    for (const auto& [field, size] : others)
+      if (size != x_num.size())
+        fail(where, std::string(field) + ": " + std::to_string(size) + " coefficients, but x_num has " +
+                        std::to_string(x_num.size()) + " (the four lists need one common degree)");
+    return Curve::rational(std::move(id), std::move(x_num), std::move(x_den), std::move(y_num), std::move(y_den));
+  }
+  fail(where, "kind: unknown \"" + kind + "\" (expected bezier, rational_bezier or rational)");
+}
+
+}  // namespace
+
+std::vector<Curve> read_curves_json(const std::string& path) {
+  const std::string text = read_whole_file(path);
+
+  LocatingBuilder builder(text);
+  // strict: nothing may follow the top-level value.
+  if (!json::sax_parse(text, &builder, json::input_format_t::json, /*strict=*/true)) {
+    if (builder.error.empty()) builder.error = "malformed JSON";
+    fail(path, builder.error);
+  }
+  const json& root = builder.root;
+
+  if (!root.is_object()) fail(path, "expected an object {\"curves\": [...]}, found " + a_type_name(root));
+  const auto list = root.find("curves");
+  if (list == root.end()) fail(path, "curves: missing (expected {\"curves\": [...]})");
+  if (!list->is_array()) fail(path, "curves: expected an array, found " + a_type_name(*list));
+  if (list->empty()) fail(path, "curves: empty list (need at least one curve)");
+
+  std::vector<Curve> curves;
+  curves.reserve(list->size());
+  std::unordered_map<std::string, std::size_t> index_of_id;
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    std::string where = path + ": curves[" + std::to_string(i) + "]";
+    Curve curve = parse_curve((*list)[i], where);
+    const auto [previous, inserted] = index_of_id.emplace(curve.id, i);
+    if (!inserted) fail(where, "id: duplicate of curves[" + std::to_string(previous->second) + "]");
+    try {
+      validate(curve);
+    } catch (const CurveError& e) {
+      // validate() names the curve itself ("curve \"a\": ..."); `where` already does.
+      std::string_view message(e.what());
+      const std::string own_prefix = "curve \"" + curve.id + "\": ";
+      if (message.starts_with(own_prefix)) message.remove_prefix(own_prefix.size());
+      fail(where, std::string(message));
+    }
+    curves.push_back(std::move(curve));
+  }
+  return curves;
+}
+
+}  // namespace bezinv

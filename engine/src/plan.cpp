@@ -1,0 +1,199 @@
+#include "bezinv/plan.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "bezinv/bernstein.hpp"
+#include "bezinv/bezout.hpp"
+#include "bezinv/kernels/symmetric_svd.hpp"
+#include "bezinv/tolerances.hpp"
+
+namespace bezinv {
+namespace {
+
+using Poly = std::vector<double>;
+
+double max_abs(const Poly& p) {
+  double m = 0;
+  for (double v : p) m = std::max(m, std::abs(v));
+  return m;
+}
+
+// |leading power coefficient| against what rounding of the coefficients can leave in it.
+// `magnitude` bounds the coefficients as they were before translation to the centre: a curve
+// elevated at (1e6, -1e6) carries rounding of 1e6 * eps in every coefficient, which the
+// translation does not remove. The bound on the leading coefficient is then
+// sum_i C(n,i) * magnitude = 2^n * magnitude.
+bool leading_coefficient_vanishes(const Poly& p, double magnitude, double ratio) {
+  const double bound = std::max(power_leading_bound(p), std::ldexp(magnitude, static_cast<int>(p.size()) - 1));
+  return std::abs(power_leading_coefficient(p)) <= ratio * bound;
+}
+
+Poly reduced(const Poly& p) {
+  Poly r(p.size() - 1);
+  reduce_degree(p, r);
+  return r;
+}
+
+// The control points whose bounding box sets the curve's size: (num_i / den_i) where the
+// denominator coefficient is non-zero, plus the curve's two end points (for kind `rational` the
+// ratios need not bound the curve, the ends always lie on it).
+std::vector<std::array<double, 2>> control_points(const Curve& c) {
+  std::vector<std::array<double, 2>> pts;
+  for (std::size_t i = 0; i < c.x_num.size(); ++i)
+    if (c.x_den[i] != 0.0 && c.y_den[i] != 0.0)
+      pts.push_back({c.x_num[i] / c.x_den[i], c.y_num[i] / c.y_den[i]});
+  pts.push_back(c.point(0.0));
+  pts.push_back(c.point(1.0));
+  return pts;
+}
+
+// Sample parameters for the properness test: irrational-looking, away from the ends and from
+// each other, so that hitting an exceptional point (double point) at all three is impossible
+// for a proper curve.
+constexpr std::array<double, 3> kProperSamples = {0.2718281828459045, 0.5772156649015329, 0.8414709848078965};
+
+}  // namespace
+
+std::array<double, 2> InversionPlan::normalize(double x, double y) const {
+  const double dx = x - centre[0], dy = y - centre[1];
+  return {(cos_rotation * dx - sin_rotation * dy) / scale, (sin_rotation * dx + cos_rotation * dy) / scale};
+}
+
+std::array<double, 2> InversionPlan::normalized_point(double t) const {
+  return {bernstein_value(x_num, t) / bernstein_value(x_den, t),
+          bernstein_value(y_num, t) / bernstein_value(y_den, t)};
+}
+
+void bezout_at(const InversionPlan& plan, double u0, double v0, std::span<double> out) {
+  const int nn = plan.degree * plan.degree;
+  if (plan.common_denominator) {
+    for (int i = 0; i < nn; ++i) out[i] = plan.B0[i] - u0 * plan.Bx[i] - v0 * plan.By[i];
+  } else {
+    const double uv = u0 * v0;
+    for (int i = 0; i < nn; ++i) out[i] = plan.B0[i] - u0 * plan.Bx[i] - v0 * plan.By[i] + uv * plan.Bxy[i];
+  }
+}
+
+InversionPlan make_plan(const Curve& curve) {
+  validate(curve);
+  InversionPlan plan;
+  plan.curve = curve;
+  plan.input_degree = curve.degree();
+  plan.common_denominator = curve.common_denominator();
+
+  // Size: bounding box of the control points.
+  const auto pts = control_points(curve);
+  double lo[2] = {pts[0][0], pts[0][1]}, hi[2] = {lo[0], lo[1]};
+  for (const auto& p : pts)
+    for (int k = 0; k < 2; ++k) { lo[k] = std::min(lo[k], p[k]); hi[k] = std::max(hi[k], p[k]); }
+  plan.diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
+  plan.centre = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])};
+  plan.scale = plan.diagonal > 0 ? plan.diagonal : 1.0;
+
+  // Rotation (one denominator only): turn the principal axis of the control points to 45 degrees,
+  // so neither coordinate of a straight segment is constant (a constant x makes p = X - x0 W
+  // vanish identically for every point on it, and B = 0). Separate denominators would be mixed by
+  // a rotation (x' = c x - s y needs the product of both), so they keep the axes.
+  if (plan.common_denominator) {
+    double sxx = 0, syy = 0, sxy = 0;
+    for (const auto& p : pts) {
+      const double dx = p[0] - plan.centre[0], dy = p[1] - plan.centre[1];
+      sxx += dx * dx; syy += dy * dy; sxy += dx * dy;
+    }
+    const double principal = 0.5 * std::atan2(2 * sxy, sxx - syy);
+    const double alpha = std::numbers::pi / 4 - principal;
+    plan.cos_rotation = std::cos(alpha);
+    plan.sin_rotation = std::sin(alpha);
+  }
+
+  // Normalized coefficients. Numerator and denominator are divided by the largest denominator
+  // coefficient too (P = X/W is unchanged), so huge or tiny weights do not reach B.
+  const int n0 = curve.degree();
+  const double xs = max_abs(curve.x_den), ys = max_abs(curve.y_den);
+  Poly xn(n0 + 1), xd(n0 + 1), yn(n0 + 1), yd(n0 + 1);
+  double magnitude_x = 0, magnitude_y = 0;  // coefficient size before translation, normalized units
+  for (int i = 0; i <= n0; ++i) {
+    magnitude_x = std::max(magnitude_x, (std::abs(curve.x_num[i]) + std::abs(plan.centre[0] * curve.x_den[i])) / xs);
+    magnitude_y = std::max(magnitude_y, (std::abs(curve.y_num[i]) + std::abs(plan.centre[1] * curve.y_den[i])) / ys);
+    const double X = curve.x_num[i] / xs - plan.centre[0] * (curve.x_den[i] / xs);
+    const double Wx = curve.x_den[i] / xs;
+    const double Y = curve.y_num[i] / ys - plan.centre[1] * (curve.y_den[i] / ys);
+    const double Wy = curve.y_den[i] / ys;
+    if (plan.common_denominator) {
+      xn[i] = (plan.cos_rotation * X - plan.sin_rotation * Y) / plan.scale;
+      yn[i] = (plan.sin_rotation * X + plan.cos_rotation * Y) / plan.scale;
+    } else {
+      xn[i] = X / plan.scale;
+      yn[i] = Y / plan.scale;
+    }
+    xd[i] = Wx;
+    yd[i] = Wy;
+  }
+
+  // Effective degree: a degree-elevated curve has all four power-basis leading coefficients at
+  // round-off level; its Bezout matrix would then have a spurious null direction (the common
+  // "root at infinity") at every point. Reduce until one of them is genuinely non-zero.
+  // A rotation mixes x and y, so either numerator may carry either coordinate's rounding.
+  const double magnitude_num =
+      (plan.common_denominator ? magnitude_x + magnitude_y : std::max(magnitude_x, magnitude_y)) / plan.scale;
+  while (xn.size() > 2 && leading_coefficient_vanishes(xn, magnitude_num, kElevatedLeadingRatio) &&
+         leading_coefficient_vanishes(xd, 0.0, kElevatedLeadingRatio) &&
+         leading_coefficient_vanishes(yn, magnitude_num, kElevatedLeadingRatio) &&
+         leading_coefficient_vanishes(yd, 0.0, kElevatedLeadingRatio)) {
+    xn = reduced(xn); xd = reduced(xd); yn = reduced(yn); yd = reduced(yd);
+  }
+  const int n = static_cast<int>(xn.size()) - 1;
+  plan.degree = n;
+  plan.x_num = xn; plan.x_den = xd; plan.y_num = yn; plan.y_den = yd;
+  plan.lead_x_num = power_leading_coefficient(xn);
+  plan.lead_x_den = power_leading_coefficient(xd);
+  plan.lead_y_num = power_leading_coefficient(yn);
+  plan.lead_y_den = power_leading_coefficient(yd);
+
+  // B(u0,v0) = Bez(Xn,Yn) - u0 Bez(Xd,Yn) - v0 Bez(Xn,Yd) + u0 v0 Bez(Xd,Yd).
+  const int nn = n * n;
+  plan.B0.assign(nn, 0.0); plan.Bx.assign(nn, 0.0); plan.By.assign(nn, 0.0); plan.Bxy.assign(nn, 0.0);
+  bezout_matrix(xn, yn, plan.B0);
+  bezout_matrix(xd, yn, plan.Bx);
+  bezout_matrix(xn, yd, plan.By);
+  if (!plan.common_denominator) bezout_matrix(xd, yd, plan.Bxy);
+
+  if (plan.diagonal == 0.0) {
+    plan.usable = false;
+    plan.reason = "degenerate curve: all control points coincide";
+    return plan;
+  }
+
+  // Properness: at three generic points of the curve B must have nullity exactly 1.
+  if (n >= 2) {
+    std::array<double, kMaxDegree * kMaxDegree> B, V;
+    std::array<double, kMaxDegree> sigma;
+    bool nullity_above_one_everywhere = true;
+    for (double ts : kProperSamples) {
+      const auto uv = plan.normalized_point(ts);
+      bezout_at(plan, uv[0], uv[1], B);
+      kernels::symmetric_svd(n, std::span<const double>(B.data(), nn), sigma, V);
+      // Judged against the size of B's terms before they cancel, not against sigma_1: on an
+      // improper curve of degree 2 (a line traced by t^2) B vanishes altogether, and sigma_1 is
+      // round-off itself.
+      double reference = sigma[0];
+      for (int i = 0; i < nn; ++i)
+        reference = std::max(reference, std::abs(plan.B0[i]) + std::abs(uv[0] * plan.Bx[i]) +
+                                            std::abs(uv[1] * plan.By[i]) + std::abs(uv[0] * uv[1] * plan.Bxy[i]));
+      const double ratio = sigma[n - 2] / reference;
+      if (!(ratio <= kImproperSigmaRatio)) nullity_above_one_everywhere = false;
+    }
+    if (nullity_above_one_everywhere) {
+      plan.usable = false;
+      plan.reason = "improperly parametrized curve (its points have several parameters: a reparametrization "
+                    "such as t -> t^2); the resultant method cannot separate them";
+    }
+  }
+  return plan;
+}
+
+}  // namespace bezinv

@@ -1,0 +1,25 @@
+#pragma once
+// Geometry of the normalized curve for refinement and nearest-point search (engine internal).
+#include "bezinv/plan.hpp"
+
+namespace bezinv::detail {
+
+// P(t), P'(t), P''(t) of the normalized curve. For x = N/D:
+//   x' = (N' - D' x) / D,   x'' = (N'' - 2 D' x' - D'' x) / D.
+struct CurveJet { double x, y, dx, dy, ddx, ddy; };
+CurveJet curve_jet(const InversionPlan& plan, double t);
+
+// |P(t) - (u0, v0)| in normalized units (NaN where a denominator vanishes).
+double distance(const InversionPlan& plan, double u0, double v0, double t);
+
+// Newton's method on f(t) = (P(t) - P0) . P'(t) (the nearest-point condition), started at t0.
+// Safeguards: each step is at most kNewtonMaxStep and must not increase |P(t) - P0| (halved until
+// it does), so the iterate stays in the basin it started in; with `stay_on_segment` it is also
+// clamped to [0,1]. Returns the last accepted iterate.
+double refine_parameter(const InversionPlan& plan, double u0, double v0, double t0, bool stay_on_segment);
+
+// Parameter of the nearest point of the segment [0,1] to (u0, v0): dense sampling finds every
+// basin, each local minimum is refined, the best one wins. `hint` (if in [0,1]) is refined too.
+double nearest_parameter_on_segment(const InversionPlan& plan, double u0, double v0, double hint);
+
+}  // namespace bezinv::detail

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs what bezinv needs to build, test and benchmark, from Debian packages only.
+# Safe to run again: apt-get skips what is already there.
+set -euo pipefail
+packages=(g++ cmake make git pkg-config
+          libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev
+          libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev libmpfr-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  echo "setup: installing ${missing[*]}" >&2
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

@@ -1,0 +1,461 @@
+// Property tests of inversion through the public API (make_plan, invert_point, invert), on
+// thousands of points whose answers are known by construction (datasets_gen): every kind, degrees
+// 1..20, on the segment, at its ends, on its extension, off the curve along the normal, at
+// constructed self-intersections, on degree-elevated, far-translated and improperly parametrized
+// curves. Every failure message carries kind, degree, seed and t_true, so one run reproduces it.
+//
+// The accuracy model (the bounds every test uses, derived, not fitted):
+//   A double point P0 = round(P(t_true)) is off the curve by <= u |P| (u = 2^-53), and evaluating
+//   P(t) in double (de Casteljau, one division) errs by about n u scale, scale = KnownPoint::scale
+//   (sum of the absolute terms; >= |P|, = (|1-t|+|t|)^n-amplified on the extension, ~|offset| for a
+//   translated curve). Newton's method to full precision therefore lands within
+//       e_P = kSlack (n + 1) u scale            of the curve (residual), and
+//       e_t = e_P / |P'(t_true)| + 4 u max(1, |t|)   of t_true (the second term: its own stopping rule).
+//   kSlack = 16 covers the normalization (centre, rotation, scale: a few more roundings per
+//   coefficient); as the engine works relative to the centre of the control points, scale is at
+//   least the diagonal (a point near the origin is not evaluated more accurately than one at the far
+//   side of the curve). Where |P'| is tiny t is ill-conditioned and e_t grows with it, by
+//   construction.
+//   On top of the derived bounds, the fixed bounds hold wherever the data is of unit size:
+//   residual <= 1e-12 diagonal and |t - t_true| <= 1e-8 whenever e_t <= 1e-9.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bezinv/curve.hpp"
+#include "bezinv/datasets/curve_sampling.hpp"
+#include "bezinv/datasets/degree_elevation.hpp"
+#include "bezinv/datasets/improper.hpp"
+#include "bezinv/datasets/off_curve_points.hpp"
+#include "bezinv/datasets/on_curve_points.hpp"
+#include "bezinv/datasets/paper_curves.hpp"
+#include "bezinv/datasets/random_curve.hpp"
+#include "bezinv/datasets/random_numbers.hpp"
+#include "bezinv/datasets/self_intersection.hpp"
+#include "bezinv/datasets/translation.hpp"
+#include "bezinv/invert.hpp"
+#include "bezinv/plan.hpp"
+#include "bezinv/tolerances.hpp"
+
+namespace bezinv {
+namespace {
+
+using datasets::ControlPolygon;
+using datasets::CurveSampling;
+using datasets::KnownPoint;
+
+constexpr double kUnitRoundoff = 0x1p-53;
+constexpr double kSlack = 16;
+// The fixed bounds for data of unit size.
+constexpr double kResidualRelative = 1e-12;
+constexpr double kParameterError = 1e-8;
+constexpr double kWellConditioned = 1e-9;  // e_t at most this: the fixed bound kParameterError applies
+
+constexpr CurveKind kKinds[] = {CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational};
+constexpr ControlPolygon kPolygons[] = {ControlPolygon::unit_square, ControlPolygon::perturbed_arc};
+
+// ---- the cases -----------------------------------------------------------------------------------
+
+struct Case {
+  std::string name;  // kind, degree, polygon, seed (or the paper curve's id)
+  int degree = 0;
+  std::unique_ptr<CurveSampling> sampling;
+  InversionPlan plan;
+  std::uint64_t seed = 0;
+};
+
+std::uint64_t seed_of(CurveKind kind, int degree, ControlPolygon polygon, int salt) {
+  return 1000003ULL * static_cast<std::uint64_t>(kind) + 1009ULL * static_cast<std::uint64_t>(degree) +
+         101ULL * static_cast<std::uint64_t>(polygon) + static_cast<std::uint64_t>(salt);
+}
+
+std::string case_name(CurveKind kind, int degree, ControlPolygon polygon, std::uint64_t seed) {
+  return std::string(to_string(kind)) + " degree " + std::to_string(degree) + " " + datasets::to_string(polygon) +
+         " seed " + std::to_string(seed);
+}
+
+Case make_case(std::string name, Curve curve, std::uint64_t seed) {
+  Case c;
+  c.name = std::move(name);
+  c.degree = curve.degree();
+  c.seed = seed;
+  c.plan = make_plan(curve);
+  c.sampling = std::make_unique<CurveSampling>(std::move(curve));
+  return c;
+}
+
+// Every kind x degree 1..20 x control polygon, plus the paper's curves and the default cubic.
+// Built once (the dense sampling behind the point sets is the expensive part).
+const std::vector<Case>& random_cases() {
+  static const std::vector<Case> cases = [] {
+    std::vector<Case> out;
+    for (CurveKind kind : kKinds)
+      for (int degree = 1; degree <= 20; ++degree)
+        for (ControlPolygon polygon : kPolygons) {
+          const std::uint64_t seed = seed_of(kind, degree, polygon, 0);
+          std::mt19937_64 rng(seed);
+          out.push_back(make_case(case_name(kind, degree, polygon, seed),
+                                  datasets::random_curve(kind, degree, rng, polygon), seed));
+        }
+    for (Curve c : {datasets::paper_example1_curve(), datasets::paper_example2_curve(),
+                    datasets::paper_example4_curve(), datasets::default_cubic_curve()})
+      out.push_back(make_case(c.id, c, 7));
+    return out;
+  }();
+  return cases;
+}
+
+// ---- the accuracy model --------------------------------------------------------------------------
+
+double residual_bound(const Case& c, const KnownPoint& k) {
+  return kSlack * (c.degree + 1) * kUnitRoundoff * std::max(k.scale, c.plan.diagonal);
+}
+
+double parameter_bound(const Case& c, const KnownPoint& k) {
+  return residual_bound(c, k) / k.speed + 4 * kUnitRoundoff * std::max(1.0, std::abs(k.t));
+}
+
+std::string describe(const Case& c, const KnownPoint& k, const PointResult& r) {
+  std::ostringstream s;
+  s.precision(17);
+  s << c.name << ", t_true " << k.t;
+  if (std::isfinite(k.t2)) s << ", t2_true " << k.t2;
+  s << ", point (" << k.point.x << ", " << k.point.y << "), distance " << k.distance << ", speed " << k.speed
+    << ", scale " << k.scale << " -> status " << to_string(r.status) << ", t " << r.t << ", t2 " << r.t2
+    << ", residual " << r.residual << ", path " << to_string(r.path) << ", sigma_min " << r.sigma_min
+    << ", sigma_next " << r.sigma_next << (r.reason[0] ? ", reason: " : "") << r.reason;
+  return s.str();
+}
+
+// What a test measured, printed once at its end for the record (the bounds are asserted per point).
+struct Measured {
+  std::string what;
+  int points = 0;
+  double max_dt = 0;        // max |t - t_true|
+  double max_dt_ratio = 0;  // max |t - t_true| / e_t
+  double max_residual = 0;  // max |residual - distance| / diagonal
+  void add(double dt, double ratio, double residual) {
+    ++points;
+    max_dt = std::max(max_dt, dt);
+    max_dt_ratio = std::max(max_dt_ratio, ratio);
+    max_residual = std::max(max_residual, residual);
+  }
+  ~Measured() {
+    std::printf("[ measured ] %-34s %6d points  max|dt| %.2e  max|dt|/e_t %.3f  max|res-d|/diag %.2e\n",
+                what.c_str(), points, max_dt, max_dt_ratio, max_residual);
+  }
+};
+
+// A point on the curve (segment or extension): status, t and residual against the model.
+void expect_on_curve(const Case& c, const KnownPoint& k, const PointResult& r, Status expected, Measured& m) {
+  const double diagonal = c.plan.diagonal;
+  ASSERT_EQ(r.status, expected) << describe(c, k, r);
+  const double dt = std::abs(r.t - k.t);
+  const double e_t = parameter_bound(c, k);
+  EXPECT_LE(dt, e_t) << describe(c, k, r);
+  if (e_t <= kWellConditioned) { EXPECT_LE(dt, kParameterError) << describe(c, k, r); }
+  EXPECT_LE(r.residual, k.distance + residual_bound(c, k)) << describe(c, k, r);
+  if (k.scale <= 4 * diagonal) { EXPECT_LE(r.residual, kResidualRelative * diagonal) << describe(c, k, r); }
+  if (expected == Status::ok) { EXPECT_TRUE(r.t >= 0 && r.t <= 1) << describe(c, k, r); }
+  if (expected == Status::outside_segment) { EXPECT_TRUE(r.t < 0 || r.t > 1) << describe(c, k, r); }
+  m.add(dt, dt / e_t, std::abs(r.residual - k.distance) / diagonal);
+}
+
+// A point off the curve with a known nearest point of the segment.
+void expect_nearest(const Case& c, const KnownPoint& k, const PointResult& r, Status expected, Measured& m) {
+  const double diagonal = c.plan.diagonal;
+  ASSERT_EQ(r.status, expected) << describe(c, k, r);
+  const double dt = std::abs(r.t - k.t);
+  // Near the nearest point the distance is flat to first order: the nearest-point condition
+  // (P - P0) . P' = 0 has slope |P'|^2 (1 - kappa d) >= |P'|^2 / 2 (the generator keeps d below
+  // half the radius of curvature), so t is found to 2 e_P / |P'| (plus its stopping rule), as on
+  // the curve.
+  const double e_t = 2 * parameter_bound(c, k);
+  EXPECT_LE(dt, e_t) << describe(c, k, r);
+  if (e_t <= kWellConditioned) { EXPECT_LE(dt, kParameterError) << describe(c, k, r); }
+  // The residual is the distance to the nearest point: to 1e-9 relative, or to the rounding floor.
+  const double floor = residual_bound(c, k);
+  EXPECT_NEAR(r.residual, k.distance, 1e-9 * k.distance + floor) << describe(c, k, r);
+  EXPECT_TRUE(r.t >= 0 && r.t <= 1) << describe(c, k, r);
+  m.add(dt, dt / e_t, std::abs(r.residual - k.distance) / diagonal);
+}
+
+// ---- on the curve ----------------------------------------------------------------------------------
+
+TEST(InvertProperty, OnTheSegment) {
+  Measured m{"on the segment"};
+  for (const Case& c : random_cases()) {
+    std::mt19937_64 rng(c.seed + 1);
+    const auto points = datasets::segment_points(*c.sampling, 16, rng);
+    EXPECT_GE(points.size(), 12u) << c.name << ": the generator could not isolate enough points";
+    for (const KnownPoint& k : points) expect_on_curve(c, k, invert_point(c.plan, k.point), Status::ok, m);
+  }
+  EXPECT_GT(m.points, 1500);
+}
+
+TEST(InvertProperty, AtAndNearTheEnds) {
+  Measured m{"ends (t = 0, 1e-12 .. 1)"};
+  int exact_ends = 0, ends = 0;
+  for (const Case& c : random_cases()) {
+    for (const KnownPoint& k : datasets::end_points(*c.sampling)) {
+      const PointResult r = invert_point(c.plan, k.point);
+      expect_on_curve(c, k, r, Status::ok, m);
+      if (k.t == 0.0 || k.t == 1.0) {
+        ++ends;
+        exact_ends += r.t == k.t;
+      }
+    }
+  }
+  std::printf("[ measured ] ends: t returned exactly 0 or 1 for %d of %d end points\n", exact_ends, ends);
+  EXPECT_GT(m.points, 600);
+}
+
+TEST(InvertProperty, OnTheExtension) {
+  Measured m{"on the extension"};
+  for (const Case& c : random_cases()) {
+    std::mt19937_64 rng(c.seed + 2);
+    for (const KnownPoint& k : datasets::extension_points(*c.sampling, 6, rng))
+      expect_on_curve(c, k, invert_point(c.plan, k.point), Status::outside_segment, m);
+  }
+  EXPECT_GT(m.points, 400);
+}
+
+// ---- off the curve ---------------------------------------------------------------------------------
+
+TEST(InvertProperty, OffTheCurveAlongTheNormal) {
+  Measured m{"off the curve (d >= 1e-5 diag)"};
+  for (const Case& c : random_cases()) {
+    std::mt19937_64 rng(c.seed + 3);
+    // d from 10x the tolerance to 10% of the diagonal.
+    const auto points = datasets::normal_offset_points(*c.sampling, 8, 10 * kDefaultRelativeTolerance, 0.1, rng);
+    for (const KnownPoint& k : points) expect_nearest(c, k, invert_point(c.plan, k.point), Status::off_curve, m);
+  }
+  EXPECT_GT(m.points, 600);
+}
+
+TEST(InvertProperty, WithinToleranceOfTheCurve) {
+  Measured m{"within tolerance (d = 0.3 tol)"};
+  for (const Case& c : random_cases()) {
+    std::mt19937_64 rng(c.seed + 4);
+    const double d = 0.3 * kDefaultRelativeTolerance;
+    for (const KnownPoint& k : datasets::normal_offset_points(*c.sampling, 4, d, d, rng))
+      expect_nearest(c, k, invert_point(c.plan, k.point), Status::ok, m);
+  }
+  EXPECT_GT(m.points, 300);
+}
+
+// ---- self-intersections ----------------------------------------------------------------------------
+
+TEST(InvertProperty, ConstructedSelfIntersections) {
+  Measured m{"double points (t and t2)"};
+  for (CurveKind kind : kKinds)
+    for (int degree = 3; degree <= 20; ++degree) {
+      const std::uint64_t seed = seed_of(kind, degree, ControlPolygon::unit_square, 5);
+      std::mt19937_64 rng(seed);
+      const double t1 = datasets::uniform(rng, 0.05, 0.45), t2 = datasets::uniform(rng, 0.55, 0.95);
+      Case c = make_case(case_name(kind, degree, ControlPolygon::unit_square, seed) + " crossing at " +
+                             std::to_string(t1) + ", " + std::to_string(t2),
+                         datasets::with_self_intersection(kind, degree, t1, t2, rng), seed);
+      // The crossing itself, then points 0.3 tol away from it: within tolerance of both branches.
+      const auto points = datasets::crossing_points(*c.sampling, t1, t2, 4, 0.3 * kDefaultRelativeTolerance, rng);
+      ASSERT_GE(points.size(), 3u) << c.name;
+      for (const KnownPoint& k : points) {
+        const PointResult r = invert_point(c.plan, k.point);
+        ASSERT_EQ(r.status, Status::double_point) << describe(c, k, r);
+        const double e_t = 2 * parameter_bound(c, k);
+        const double dt = std::max(std::abs(r.t - k.t), std::abs(r.t2 - k.t2));
+        EXPECT_LE(dt, e_t) << describe(c, k, r);
+        if (e_t <= kWellConditioned) { EXPECT_LE(dt, kParameterError) << describe(c, k, r); }
+        EXPECT_LT(r.t, r.t2) << describe(c, k, r);
+        m.add(dt, dt / e_t, 0);
+      }
+    }
+}
+
+// ---- equivalent curves -----------------------------------------------------------------------------
+
+TEST(InvertProperty, DegreeElevatedCurvesReduceAndInvertAsWell) {
+  Measured m{"degree-elevated"};
+  for (CurveKind kind : kKinds)
+    for (int degree = 1; degree <= 15; ++degree)
+      for (int times : {1, 2, 4}) {
+        const std::uint64_t seed = seed_of(kind, degree, ControlPolygon::perturbed_arc, 10 + times);
+        std::mt19937_64 rng(seed);
+        const Curve original = datasets::random_curve(kind, degree, rng, ControlPolygon::perturbed_arc);
+        Case c = make_case(case_name(kind, degree, ControlPolygon::perturbed_arc, seed) + " elevated " +
+                               std::to_string(times) + "x",
+                           datasets::degree_elevated(original, times), seed);
+        ASSERT_EQ(c.plan.input_degree, degree + times) << c.name;
+        EXPECT_EQ(c.plan.degree, degree) << c.name;
+        // Accuracy as for the original: the model uses the original degree.
+        c.degree = degree;
+        for (const KnownPoint& k : datasets::segment_points(*c.sampling, 6, rng))
+          expect_on_curve(c, k, invert_point(c.plan, k.point), Status::ok, m);
+      }
+}
+
+TEST(InvertProperty, TranslatedFarFromTheOrigin) {
+  Measured on{"translated ~(1e6,-1e6): on segment"}, off{"translated ~(1e6,-1e6): off curve"};
+  for (CurveKind kind : kKinds)
+    for (int degree = 1; degree <= 20; ++degree) {
+      const std::uint64_t seed = seed_of(kind, degree, ControlPolygon::perturbed_arc, 20);
+      std::mt19937_64 rng(seed);
+      const Curve original = datasets::random_curve(kind, degree, rng, ControlPolygon::perturbed_arc);
+      const double dx = 1e6 + datasets::uniform(rng, 0, 1), dy = -1e6 - datasets::uniform(rng, 0, 1);
+      const Case c = make_case(case_name(kind, degree, ControlPolygon::perturbed_arc, seed) + " translated",
+                               datasets::translated(original, dx, dy), seed);
+      for (const KnownPoint& k : datasets::segment_points(*c.sampling, 8, rng))
+        expect_on_curve(c, k, invert_point(c.plan, k.point), Status::ok, on);
+      // Offsets from 1e-4 diagonal: the coordinates themselves are quantized at 1.2e-10 here.
+      for (const KnownPoint& k : datasets::normal_offset_points(*c.sampling, 4, 1e-4, 0.1, rng))
+        expect_nearest(c, k, invert_point(c.plan, k.point), Status::off_curve, off);
+    }
+}
+
+// ---- improper parametrizations ---------------------------------------------------------------------
+
+TEST(InvertProperty, ImproperCurvesFailEveryRow) {
+  int rows = 0;
+  for (CurveKind kind : kKinds)
+    for (int m = 1; m <= 10; ++m) {
+      const std::uint64_t seed = seed_of(kind, m, ControlPolygon::perturbed_arc, 30);
+      std::mt19937_64 rng(seed);
+      const Curve q = datasets::random_curve(kind, m, rng, ControlPolygon::perturbed_arc);
+      const Curve p = datasets::improper(q);
+      const std::string name = case_name(kind, m, ControlPolygon::perturbed_arc, seed) + " as Q(t^2), degree " +
+                               std::to_string(2 * m);
+      const InversionPlan plan = make_plan(p);
+      EXPECT_FALSE(plan.usable) << name;
+      std::vector<Point> points;
+      std::vector<double> t_true;
+      for (int i = 0; i < 8; ++i) {
+        t_true.push_back(datasets::uniform(rng, 0, 1));
+        points.push_back(datasets::on_curve(p, t_true.back()));
+      }
+      const Point centre = datasets::on_curve(p, 0.5);
+      points.push_back({centre.x + 0.01, centre.y - 0.02});  // off the curve
+      t_true.push_back(PointResult::nan);
+      std::vector<PointResult> results(points.size());
+      invert(plan, points, results);
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const PointResult& r = results[i];
+        EXPECT_EQ(r.status, Status::failed) << name << ", t_true " << t_true[i] << ", got " << to_string(r.status)
+                                            << " t " << r.t;
+        EXPECT_GT(std::strlen(r.reason), 0u) << name << ", t_true " << t_true[i];
+        ++rows;
+      }
+    }
+  EXPECT_EQ(rows, 3 * 10 * 9);
+}
+
+// ---- the batched engine ----------------------------------------------------------------------------
+
+bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
+
+::testing::AssertionResult identical(const PointResult& a, const PointResult& b) {
+  if (same_bits(a.t, b.t) && same_bits(a.t2, b.t2) && same_bits(a.residual, b.residual) &&
+      same_bits(a.sigma_min, b.sigma_min) && same_bits(a.sigma_next, b.sigma_next) && a.status == b.status &&
+      a.path == b.path && std::strcmp(a.reason, b.reason) == 0)
+    return ::testing::AssertionSuccess();
+  std::ostringstream s;
+  s.precision(17);
+  s << "batched: " << to_string(a.status) << " t " << a.t << " t2 " << a.t2 << " residual " << a.residual
+    << " path " << to_string(a.path) << "; invert_point: " << to_string(b.status) << " t " << b.t << " t2 " << b.t2
+    << " residual " << b.residual << " path " << to_string(b.path);
+  return ::testing::AssertionFailure() << s.str();
+}
+
+TEST(InvertProperty, BatchedEqualsSinglePointBitForBit) {
+  // Every fourth random case, with a mix of every kind of point (on, ends, extension, off, near).
+  std::vector<const Case*> cases;
+  std::vector<InversionPlan> plans;
+  std::vector<int> curve_of;
+  std::vector<Point> all_points;
+  std::vector<double> all_t;
+  int case_index = 0;
+  for (const Case& c : random_cases()) {
+    if (case_index++ % 4 != 0) continue;
+    std::mt19937_64 rng(c.seed + 6);
+    std::vector<KnownPoint> points = datasets::segment_points(*c.sampling, 40, rng);
+    for (const auto& set : {datasets::end_points(*c.sampling), datasets::extension_points(*c.sampling, 10, rng),
+                            datasets::normal_offset_points(*c.sampling, 10, 1e-7, 0.1, rng)})
+      points.insert(points.end(), set.begin(), set.end());
+    std::vector<Point> xy;
+    for (const KnownPoint& k : points) xy.push_back(k.point);
+    xy.push_back({PointResult::nan, 1.0});  // invalid_input
+    std::vector<PointResult> single(xy.size());
+    for (std::size_t i = 0; i < xy.size(); ++i) single[i] = invert_point(c.plan, xy[i]);
+    for (int threads : {1, 2}) {
+      std::vector<PointResult> batched(xy.size());
+      invert(c.plan, xy, batched, {.threads = threads});
+      for (std::size_t i = 0; i < xy.size(); ++i)
+        EXPECT_TRUE(identical(batched[i], single[i]))
+            << c.name << ", threads " << threads << ", point " << i << " t_true "
+            << (i < points.size() ? points[i].t : PointResult::nan);
+    }
+    cases.push_back(&c);
+    plans.push_back(c.plan);
+    for (std::size_t i = 0; i < xy.size(); ++i) {
+      curve_of.push_back(static_cast<int>(plans.size()) - 1);
+      all_points.push_back(xy[i]);
+      all_t.push_back(i < points.size() ? points[i].t : PointResult::nan);
+    }
+  }
+  // The many-curve overload: interleaved rows, and rows the I/O layer rejected (curve_of < 0) are
+  // left exactly as the caller set them.
+  std::mt19937_64 shuffle(99);
+  std::vector<std::size_t> order(all_points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), shuffle);
+  std::vector<int> curves(order.size());
+  std::vector<Point> points(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    curves[i] = i % 97 == 0 ? -1 : curve_of[order[i]];
+    points[i] = all_points[order[i]];
+  }
+  PointResult untouched;
+  untouched.status = Status::invalid_input;
+  untouched.reason = "set by the caller";
+  for (int threads : {1, 2}) {
+    std::vector<PointResult> results(points.size(), untouched);
+    invert(plans, curves, points, results, {.threads = threads});
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const PointResult expected = curves[i] < 0 ? untouched : invert_point(plans[curves[i]], points[i]);
+      EXPECT_TRUE(identical(results[i], expected))
+          << (curves[i] < 0 ? std::string("rejected row") : cases[curves[i]]->name) << ", threads " << threads
+          << ", row " << i << " t_true " << all_t[order[i]];
+    }
+  }
+  EXPECT_GT(points.size(), 1000u);
+}
+
+// ---- the paper's algebraic parameter ---------------------------------------------------------------
+
+TEST(InvertProperty, AlgebraicParameterWithoutRefinementIsClose) {
+  Measured m{"refine = false, degree <= 10"};
+  for (const Case& c : random_cases()) {
+    if (c.degree > 10) continue;
+    std::mt19937_64 rng(c.seed + 7);
+    for (const KnownPoint& k : datasets::segment_points(*c.sampling, 16, rng)) {
+      const PointResult r = invert_point(c.plan, k.point, {.refine = false});
+      ASSERT_EQ(r.status, Status::ok) << describe(c, k, r);
+      const double dt = std::abs(r.t - k.t);
+      EXPECT_LE(dt, kParameterError) << describe(c, k, r);
+      m.add(dt, dt / parameter_bound(c, k), std::abs(r.residual - k.distance) / c.plan.diagonal);
+    }
+  }
+  EXPECT_GT(m.points, 500);
+}
+
+}  // namespace
+}  // namespace bezinv
