@@ -74,6 +74,7 @@ std::vector<KnownPoint> normal_offset_points(const CurveSampling& sampling, int 
     const RealPoint p{k.point.x, k.point.y};
     // The truth is for the point as rounded: re-solve the nearest-point condition from t0.
     const Real t = at_end ? static_cast<Real>(t0) : nearest_parameter_near(curve, p, t0);
+    // Rounding moves the foot of the normal by ~1e-16 / speed; a jump means Newton left the basin.
     if (!(t >= 0 && t <= 1) || std::abs(t - t0) > 1e-3L) continue;
     const auto jt = reference_jet(curve, t);
     const Real dt = distance(jt.p, k.point);
@@ -82,6 +83,8 @@ std::vector<KnownPoint> normal_offset_points(const CurveSampling& sampling, int 
     const Real others = std::max((1 + kNearestGap) * dt, isolation);
     bool own_found = false, clear = true;
     for (const auto& m : sampling.segment_minima(p, 2 * others)) {
+      // The refined minimum of the own basin lands within ~1e-9 of t (golden section on a smooth
+      // minimum resolves t to about sqrt(2^-64)).
       if (std::abs(m.t - t) <= 1e-6L) { own_found = true; continue; }
       clear = clear && m.distance >= others;
     }
