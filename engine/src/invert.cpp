@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <vector>
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/kernels/symmetric_svd.hpp"
@@ -73,32 +72,35 @@ bool degree_drops(const InversionPlan& plan, const PointPolynomials& pq, double 
          std::abs(lead_q) <= kDegreeDropRatio * power_leading_bound(pq.q_span());
 }
 
-// p written at its true degree: reduce while the leading power coefficient vanishes.
-std::vector<double> at_true_degree(std::span<const double> coefficients) {
-  std::vector<double> p(coefficients.begin(), coefficients.end());
-  while (p.size() > 1 && std::abs(power_leading_coefficient(p)) <= kDegreeDropRatio * power_leading_bound(p)) {
-    std::vector<double> r(p.size() - 1);
-    reduce_degree(p, r);
-    p.swap(r);
+// p written at its true degree, in place: reduce while the leading power coefficient vanishes.
+// Returns the degree.
+int reduce_to_true_degree(Coefficients& p, int n) {
+  Coefficients r;
+  while (n >= 1) {
+    const std::span<const double> current(p.data(), n + 1);
+    if (std::abs(power_leading_coefficient(current)) > kDegreeDropRatio * power_leading_bound(current)) break;
+    reduce_degree(current, std::span<double>(r.data(), n));
+    --n;
+    std::copy_n(r.begin(), n + 1, p.begin());
   }
-  return p;
+  return n;
 }
 
-// The Sylvester path (rare: only at degree drops, so it may allocate): the left null vector of
-// S(p, q) at the true degrees is the Bernstein basis of degree m+k-1 at the common root.
+// The Sylvester path (paper Sect. 4, taken only at degree drops): the left null vector of S(p, q)
+// at the true degrees is the Bernstein basis of degree m+k-1 at the common root. Fixed-size
+// storage (m + k < 2 kMaxDegree), so no allocation here either.
 double sylvester_parameter(const PointPolynomials& pq) {
-  const auto p = at_true_degree(pq.p_span());
-  const auto q = at_true_degree(pq.q_span());
-  const int m = static_cast<int>(p.size()) - 1, k = static_cast<int>(q.size()) - 1;
+  Coefficients p = pq.p, q = pq.q;
+  const int m = reduce_to_true_degree(p, pq.n), k = reduce_to_true_degree(q, pq.n);
   if (m < 1 || k < 1) return std::nan("");
+  constexpr int kMaxSize = 2 * kMaxDegree;
+  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, kMaxSize, kMaxSize>;
   const int size = m + k;
-  Eigen::MatrixXd S(size, size);
-  std::vector<double> entries(static_cast<std::size_t>(size) * size);
-  sylvester_matrix(p, q, entries);
-  for (int r = 0; r < size; ++r)
-    for (int c = 0; c < size; ++c) S(r, c) = entries[r * size + c];
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(S, Eigen::ComputeFullU);
-  const Eigen::VectorXd z = svd.matrixU().col(size - 1);  // v^T S = 0
+  Matrix S(size, size);
+  sylvester_matrix(std::span<const double>(p.data(), m + 1), std::span<const double>(q.data(), k + 1),
+                   std::span<double>(S.data(), static_cast<std::size_t>(size) * size));
+  Eigen::JacobiSVD<Matrix> svd(S, Eigen::ComputeFullU);
+  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxSize, 1> z = svd.matrixU().col(size - 1);  // v^T S = 0
   return parameter_from_null_vector(std::span<const double>(z.data(), size));
 }
 

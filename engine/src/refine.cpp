@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <vector>
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/tolerances.hpp"
@@ -78,19 +77,28 @@ double refine_parameter(const InversionPlan& plan, double u0, double v0, double 
 }
 
 double nearest_parameter_on_segment(const InversionPlan& plan, double u0, double v0, double hint) {
+  // Fixed-size workspaces: the search runs per point, so it must not allocate.
+  constexpr int kMaxSamples = kNearestSamplesPerDegree * kMaxDegree;
   const int samples = std::max(32, kNearestSamplesPerDegree * plan.degree);
-  std::vector<double> d(samples + 1);
+  std::array<double, kMaxSamples + 1> d;
   for (int k = 0; k <= samples; ++k) d[k] = distance(plan, u0, v0, static_cast<double>(k) / samples);
-  // Local minima of the sampled distance, best first; each marks a basin to refine in.
-  std::vector<std::pair<double, int>> minima;
+  // Local minima of the sampled distance; each marks a basin to refine in. The best kMaxBasins
+  // are kept (a curve of degree n has at most 2n-1 of them, and only the nearest few can win).
+  constexpr int kMaxBasins = 8;
+  std::array<std::pair<double, int>, kMaxBasins + 1> minima;
+  int found = 0;
   for (int k = 0; k <= samples; ++k) {
     const bool left_ok = k == 0 || d[k] <= d[k - 1];
     const bool right_ok = k == samples || d[k] <= d[k + 1];
-    if (left_ok && right_ok) minima.push_back({d[k], k});
+    if (!(left_ok && right_ok)) continue;
+    // Insertion into the sorted list of the best ones so far (NaN distances never enter it).
+    if (!(d[k] < (found == kMaxBasins ? minima[found - 1].first : std::numeric_limits<double>::infinity())))
+      continue;
+    int at = std::min(found, kMaxBasins - 1);
+    while (at > 0 && minima[at - 1].first > d[k]) { minima[at] = minima[at - 1]; --at; }
+    minima[at] = {d[k], k};
+    found = std::min(found + 1, kMaxBasins);
   }
-  std::sort(minima.begin(), minima.end());
-  constexpr std::size_t kMaxBasins = 8;
-  if (minima.size() > kMaxBasins) minima.resize(kMaxBasins);
 
   double best_t = 0.0, best_d = std::numeric_limits<double>::infinity();
   auto consider = [&](double t0) {
@@ -99,7 +107,7 @@ double nearest_parameter_on_segment(const InversionPlan& plan, double u0, double
     if (dt < best_d) { best_d = dt; best_t = t; }
   };
   if (hint >= 0.0 && hint <= 1.0) consider(hint);
-  for (const auto& m : minima) consider(static_cast<double>(m.second) / samples);
+  for (int i = 0; i < found; ++i) consider(static_cast<double>(minima[i].second) / samples);
   return best_t;
 }
 
