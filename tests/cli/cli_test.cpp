@@ -22,53 +22,16 @@
 #error "BEZINV_CLI_PATH must name the bezinv binary (tests/CMakeLists.txt defines it)"
 #endif
 
+#include "support/scratch_directory.hpp"
+#include "support/split.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh directory under the system temp directory, removed with everything in it afterwards.
-class ScratchDirectory {
- public:
-  ScratchDirectory() {
-    std::random_device entropy;
-    root_ = fs::temp_directory_path() / ("bezinv-cli-test-" + std::to_string(entropy()) + std::to_string(entropy()));
-    fs::create_directories(root_);
-  }
-  ~ScratchDirectory() {
-    std::error_code ignored;
-    fs::remove_all(root_, ignored);
-  }
-  ScratchDirectory(const ScratchDirectory&) = delete;
-  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
-
-  std::string path(const std::string& name) const { return (root_ / name).string(); }
-  std::string write(const std::string& name, std::string_view contents) const {
-    std::ofstream out(root_ / name, std::ios::binary);
-    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-    return path(name);
-  }
-
- private:
-  fs::path root_;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t end = text.find(separator, start);
-    parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
-    if (end == std::string::npos) return parts;
-    start = end + 1;
-  }
-}
+using bezinv::test_support::read_file;
+using bezinv::test_support::ScratchDirectory;
+using bezinv::test_support::split;
 
 struct Outcome {
   int exit_code = -1;
@@ -134,7 +97,7 @@ std::string point_row(const std::string& curve, Vec2 p) { return curve + "," + c
 
 class CliInvert : public ::testing::Test {
  protected:
-  ScratchDirectory scratch;
+  ScratchDirectory scratch{"bezinv-cli-test-"};
   std::string curves = scratch.write("curves.json", kCurvesJson);
   std::string out = scratch.path("out.csv");
 
@@ -248,7 +211,7 @@ TEST_F(CliInvert, BadOptionValuesAreRefused) {
 }
 
 TEST(CliCommand, NoSubcommandPrintsHelpAndFails) {
-  ScratchDirectory scratch;
+  ScratchDirectory scratch{"bezinv-cli-test-"};
   const Outcome run = run_bezinv(scratch, "");
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE((run.out + run.err).find("invert"), std::string::npos);  // the help lists the subcommands
@@ -256,7 +219,7 @@ TEST(CliCommand, NoSubcommandPrintsHelpAndFails) {
 }
 
 TEST(CliCommand, VersionPrintsTheName) {
-  ScratchDirectory scratch;
+  ScratchDirectory scratch{"bezinv-cli-test-"};
   const Outcome run = run_bezinv(scratch, "--version");
   EXPECT_EQ(run.exit_code, 0);
   EXPECT_NE(run.out.find("bezinv"), std::string::npos) << run.out;

@@ -13,24 +13,15 @@
 #include "bezinv/bernstein.hpp"
 #include "bezinv/datasets/random_numbers.hpp"
 #include "support/exact.hpp"
+#include "support/measure.hpp"
+#include "support/random_polynomial.hpp"
 
 namespace bezinv {
 namespace {
 
-// Measured figures go to the XML report (--gtest_output=xml) in scientific notation.
-std::string sci(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2e", x);
-  return buf;
-}
-
-constexpr double kEps = 0x1p-52;
-
-std::vector<double> random_coefficients(std::mt19937_64& rng, int n) {
-  std::vector<double> c(static_cast<std::size_t>(n) + 1);
-  for (double& v : c) v = datasets::uniform(rng, -1.0, 1.0);  // portable, unlike std:: distributions
-  return c;
-}
+using test_support::kEps;
+using test_support::random_coefficients;
+using test_support::sci;
 
 // Parameters in and outside [0,1], all doubles (hence exact rationals).
 const std::vector<double> kParameters{0.0, 1.0, 0.5, 1.0 / 3.0, 0.1, 0.9, 0.999, 1e-3, -0.5, -0.125, 1.25, 1.7};

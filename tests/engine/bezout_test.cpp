@@ -19,24 +19,15 @@
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/plan.hpp"
 #include "support/exact.hpp"
+#include "support/measure.hpp"
+#include "support/random_polynomial.hpp"
 
 namespace bezinv {
 namespace {
 
-// Measured figures go to the XML report (--gtest_output=xml) in scientific notation.
-std::string sci(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2e", x);
-  return buf;
-}
-
-// Random numbers from datasets_gen: portable (std::uniform_real_distribution is not), so the
-// measured figures quoted in the comments reproduce on any standard library.
-std::vector<double> random_coefficients(std::mt19937_64& rng, int n) {
-  std::vector<double> c(static_cast<std::size_t>(n) + 1);
-  for (double& v : c) v = datasets::uniform(rng, -1.0, 1.0);
-  return c;
-}
+using test_support::kEps;
+using test_support::random_coefficients;
+using test_support::sci;
 
 std::vector<double> engine_bezout(const std::vector<double>& p, const std::vector<double>& q) {
   const std::size_t n = p.size() - 1;
@@ -69,8 +60,6 @@ std::vector<double> printed_recurrence_in_double(const std::vector<double>& p, c
                     ((j * (dn - i)) / (i * (dn - j))) * B(i + 1, j);
   return b;
 }
-
-constexpr double kEps = 0x1p-52;
 
 // Largest error over the matrix, relative to max |B|, measured on all 30 degrees x 4 draws below:
 // worst 3.3e-16. The bound keeps a factor ~4 (bezout.hpp promises ~4e-16).

@@ -19,46 +19,17 @@
 #include <vector>
 
 #include "bezinv/io.hpp"
+#include "support/scratch_directory.hpp"
+#include "support/split.hpp"
 
 namespace bezinv {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh directory under the system temp directory, removed with everything in it afterwards.
-class ScratchDirectory {
- public:
-  ScratchDirectory() {
-    std::random_device entropy;
-    root_ = fs::temp_directory_path() / ("bezinv-io-test-" + std::to_string(entropy()) + std::to_string(entropy()));
-    fs::create_directories(root_);
-  }
-  ~ScratchDirectory() {
-    std::error_code ignored;
-    fs::remove_all(root_, ignored);
-  }
-  ScratchDirectory(const ScratchDirectory&) = delete;
-  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
-
-  std::string path(const std::string& name) const { return (root_ / name).string(); }
-  const fs::path& root() const { return root_; }
-
-  std::string write(const std::string& name, std::string_view contents) const {
-    std::ofstream out(root_ / name, std::ios::binary);
-    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-    return path(name);
-  }
-
- private:
-  fs::path root_;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test_support::read_file;
+using test_support::ScratchDirectory;
+using test_support::split;
 
 // Runs `read`, expects InputError, and checks that the message is one line containing every
 // fragment (file name, line number, field path ...).
@@ -80,7 +51,7 @@ void expect_input_error(Read read, std::initializer_list<std::string> fragments)
 
 class IoCurvesJson : public ::testing::Test {
  protected:
-  ScratchDirectory scratch;
+  ScratchDirectory scratch{"bezinv-io-test-"};
 
   // Writes curves.json and expects read_curves_json to refuse it with these fragments (the file
   // name always among them).
@@ -248,7 +219,7 @@ std::vector<Curve> three_curves() {
 
 class IoPointsCsv : public ::testing::Test {
  protected:
-  ScratchDirectory scratch;
+  ScratchDirectory scratch{"bezinv-io-test-"};
   const std::vector<Curve> curves = three_curves();
 
   std::vector<PointRow> read(std::string_view csv) {
@@ -368,22 +339,11 @@ TEST_F(IoPointsCsv, RefusesRowsWithTheWrongNumberOfFields) {
 // ---------------------------------------------------------------------------------------------
 // OUT.csv
 
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t end = text.find(separator, start);
-    parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
-    if (end == std::string::npos) return parts;
-    start = end + 1;
-  }
-}
-
 bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
 class IoResultsCsv : public ::testing::Test {
  protected:
-  ScratchDirectory scratch;
+  ScratchDirectory scratch{"bezinv-io-test-"};
 
   std::vector<std::string> directory_entries() const {
     std::vector<std::string> names;

@@ -16,16 +16,12 @@
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/null_vector.hpp"
 #include "support/exact.hpp"
+#include "support/measure.hpp"
 
 namespace bezinv {
 namespace {
 
-// Measured figures go to the XML report (--gtest_output=xml) in scientific notation.
-std::string sci(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2e", x);
-  return buf;
-}
+using test_support::sci;
 
 // alpha * beta^{(N)}(t), rounded once from the exact value.
 std::vector<double> basis_vector(int N, double t, double alpha) {

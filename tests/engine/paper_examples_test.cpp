@@ -19,16 +19,12 @@
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
 #include "support/exact.hpp"
+#include "support/measure.hpp"
 
 namespace bezinv {
 namespace {
 
-// Measured figures go to the XML report (--gtest_output=xml) in scientific notation.
-std::string sci(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2e", x);
-  return buf;
-}
+using test_support::sci;
 
 // ---- the curves -------------------------------------------------------------------------------
 

@@ -15,24 +15,15 @@
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/sylvester.hpp"
 #include "support/exact.hpp"
+#include "support/measure.hpp"
+#include "support/random_polynomial.hpp"
 
 namespace bezinv {
 namespace {
 
-// Measured figures go to the XML report (--gtest_output=xml) in scientific notation.
-std::string sci(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2e", x);
-  return buf;
-}
-
-constexpr double kEps = 0x1p-52;
-
-std::vector<double> random_coefficients(std::mt19937_64& rng, int n) {
-  std::vector<double> c(static_cast<std::size_t>(n) + 1);
-  for (double& v : c) v = datasets::uniform(rng, -1.0, 1.0);  // portable, unlike std:: distributions
-  return c;
-}
+using test_support::kEps;
+using test_support::random_coefficients;
+using test_support::sci;
 
 std::vector<double> engine_sylvester(const std::vector<double>& p, const std::vector<double>& q) {
   const std::size_t size = p.size() + q.size() - 2;

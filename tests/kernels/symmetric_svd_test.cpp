@@ -20,16 +20,12 @@
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/kernels/symmetric_svd.hpp"
 #include "support/exact.hpp"
+#include "support/measure.hpp"
 
 namespace bezinv::kernels {
 namespace {
 
-// Measured figures go to the XML report (--gtest_output=xml) in scientific notation.
-std::string sci(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2e", x);
-  return buf;
-}
+using test_support::sci;
 
 using Dense = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
 
