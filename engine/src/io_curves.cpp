@@ -6,10 +6,7 @@
 // The SAX builder below knows the path it is inside (curves[2].points[1][0]) when either happens.
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -20,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bezinv/io.hpp"
+#include "io_whole_file.hpp"
 
 namespace bezinv {
 namespace {
@@ -28,22 +26,6 @@ using json = nlohmann::json;
 
 [[noreturn]] void fail(const std::string& where, const std::string& problem) {
   throw InputError(where + ": " + problem);
-}
-
-// The whole file in one string. (io_points.cpp has the same dozen lines: each reader is one file.)
-std::string read_whole_file(const std::string& path) {
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (file == nullptr) fail(path, std::string("cannot read: ") + std::strerror(errno));
-  std::string text;
-  char chunk[1 << 16];
-  std::size_t got = 0;
-  while ((got = std::fread(chunk, 1, sizeof chunk, file)) > 0) text.append(chunk, got);
-  // fread on a directory opens fine and fails here with EISDIR.
-  const bool failed = std::ferror(file) != 0;
-  const int error = errno;
-  std::fclose(file);
-  if (failed) fail(path, std::string("cannot read: ") + std::strerror(error));
-  return text;
 }
 
 // 1-based line of a byte offset, for errors nlohmann reports by byte only.
@@ -294,7 +276,7 @@ Curve parse_curve(const json& entry, std::string& where) {
 }  // namespace
 
 std::vector<Curve> read_curves_json(const std::string& path) {
-  const std::string text = read_whole_file(path);
+  const std::string text = detail::read_whole_file(path);
 
   LocatingBuilder builder(text);
   // strict: nothing may follow the top-level value.

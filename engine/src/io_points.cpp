@@ -4,10 +4,8 @@
 // fields are string_views into it (no per-row allocation), numbers go through std::from_chars,
 // and the curve of the previous row is remembered (point files are usually grouped by curve).
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -17,6 +15,7 @@
 #include <vector>
 
 #include "bezinv/io.hpp"
+#include "io_whole_file.hpp"
 
 namespace bezinv {
 namespace {
@@ -33,28 +32,6 @@ constexpr const char* kYNotFinite = "y is not finite";
 
 [[noreturn]] void fail(const std::string& path, std::size_t line, const std::string& problem) {
   throw InputError(path + ":" + std::to_string(line) + ": " + problem);
-}
-
-// The whole file in one string. (io_curves.cpp has the same dozen lines: each reader is one file.)
-std::string read_whole_file(const std::string& path) {
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (file == nullptr) throw InputError(path + ": cannot read: " + std::strerror(errno));
-  std::string text;
-  // One allocation for a regular file; pipes and the like grow as they go.
-  if (std::fseek(file, 0, SEEK_END) == 0) {
-    const long size = std::ftell(file);
-    if (size > 0) text.reserve(static_cast<std::size_t>(size));
-    std::rewind(file);
-  }
-  char chunk[1 << 16];
-  std::size_t got = 0;
-  while ((got = std::fread(chunk, 1, sizeof chunk, file)) > 0) text.append(chunk, got);
-  // fread on a directory opens fine and fails here with EISDIR.
-  const bool failed = std::ferror(file) != 0;
-  const int error = errno;
-  std::fclose(file);
-  if (failed) throw InputError(path + ": cannot read: " + std::strerror(error));
-  return text;
 }
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
@@ -172,7 +149,7 @@ class CurveLookup {
 }  // namespace
 
 std::vector<PointRow> read_points_csv(const std::string& path, const std::vector<Curve>& curves) {
-  const std::string text = read_whole_file(path);
+  const std::string text = detail::read_whole_file(path);
   std::string_view body(text);
   if (body.starts_with("\xEF\xBB\xBF")) body.remove_prefix(3);  // UTF-8 BOM (spreadsheet exports)
 

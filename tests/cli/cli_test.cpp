@@ -11,11 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <random>
-#include <sstream>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #ifndef BEZINV_CLI_PATH

@@ -5,13 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "bezinv/bernstein.hpp"
-#include "bezinv/datasets/random_numbers.hpp"
 #include "support/exact.hpp"
 #include "support/measure.hpp"
 #include "support/random_polynomial.hpp"

@@ -9,11 +9,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <initializer_list>
 #include <limits>
-#include <random>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -315,6 +312,9 @@ TEST_F(IoPointsCsv, AcceptsCrlfBomSpacedHeaderAndATrailingBlankLine) {
 TEST_F(IoPointsCsv, RefusesUnreadableOrEmptyFiles) {
   const std::string missing = scratch.path("no-such.csv");
   expect_input_error([&] { read_points_csv(missing, curves); }, {missing, "cannot read"});
+  // A directory: its reported size is not a file size (this once ended in std::bad_alloc).
+  const std::string directory = scratch.root().string();
+  expect_input_error([&] { read_points_csv(directory, curves); }, {directory, "cannot read"});
   expect_refused("", {":1:", "empty"});
   expect_refused("\xEF\xBB\xBF", {":1:", "empty"});
   expect_refused("\n\n", {":1:", "empty"});
