@@ -4,6 +4,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBEZINV_BUILD_TESTS=OFF -DBEZINV_BUILD_BENCH=OFF >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF >/dev/null
 cmake --build build -j"$(nproc)" --target bezinv
 ./build/bezinv demo "$@"
