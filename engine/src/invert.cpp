@@ -2,11 +2,15 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/task_arena.h>
 
 #include <Eigen/SVD>
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <cstdint>
+#include <vector>
 #include <cmath>
 
 #include "bezinv/bernstein.hpp"
@@ -156,75 +160,103 @@ Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algeb
   return c;
 }
 
-}  // namespace
+// ---------------------------------------------------------------------------------------------
+// The pipeline. Points of one curve go through it in batches of kBatchLanes, stage by stage, so
+// each stage is one loop over the batch (vectorizable, and timed separately for `bezinv profile`):
+//   1. form B    normalize the points; B = B0 - u0 Bx - v0 By + u0 v0 Bxy for every lane (SoA)
+//   2. kernel    singular values and vectors of every lane's B
+//   3. read-out  the algebraic t from the last singular vector (paper Sect. 3)
+//   4. refine    Newton from it to the nearest point, and its distance (the residual)
+//   5. decide    status; the rare paths (second null direction, Sylvester, nearest-point search)
+//                run only for the lanes that need them
+// invert_point is a batch of one, so there is one code path.
 
-PointResult invert_point(const InversionPlan& plan, Point point, const InvertOptions& options) {
-  PointResult r;
-  if (!std::isfinite(point.x) || !std::isfinite(point.y)) {
-    r.status = Status::invalid_input;
-    r.reason = "non-finite coordinate";
-    return r;
+constexpr std::size_t kBatchLanes = 64;
+
+// Per-thread storage for one batch, sized for the largest degree once: nothing is allocated per
+// point or per batch.
+struct BatchWorkspace {
+  std::array<double, kBatchLanes> u, v;
+  std::array<std::uint8_t, kBatchLanes> active;  // lane still undecided after stage 1
+  std::vector<double> B = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
+  std::vector<double> sigma = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
+  std::vector<double> V = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
+  std::array<double, kBatchLanes> t_algebraic;
+  std::array<Candidate, kBatchLanes> main;
+};
+
+BatchWorkspace& batch_workspace() {
+  thread_local BatchWorkspace workspace;
+  return workspace;
+}
+
+// Stage 2 for a whole batch. Lane l's B is entry (r, c) at B[(r n + c) stride + l]; sigma and V
+// come back in the same lane-major layout (kernels/include/bezinv/kernels/batch.hpp).
+void batch_symmetric_svd(int n, std::size_t count, std::size_t stride, const double* B, double* sigma, double* V) {
+  std::array<double, kMaxDegree * kMaxDegree> b, vectors;
+  std::array<double, kMaxDegree> values;
+  const int nn = n * n;
+  for (std::size_t l = 0; l < count; ++l) {
+    for (int i = 0; i < nn; ++i) b[i] = B[i * stride + l];
+    kernels::symmetric_svd(n, std::span<const double>(b.data(), nn), values, vectors);
+    for (int k = 0; k < n; ++k) sigma[k * stride + l] = values[k];
+    for (int i = 0; i < nn; ++i) V[i * stride + l] = vectors[i];
   }
-  if (!plan.usable) {
-    r.status = Status::failed;
-    r.reason = plan.reason;
-    return r;
+}
+
+class StageClock {
+ public:
+  explicit StageClock(StageSeconds* stages) : stages_(stages) {
+    if (stages_) last_ = std::chrono::steady_clock::now();
   }
-  const auto [u0, v0] = plan.normalize(point.x, point.y);
-  if (!std::isfinite(u0) || !std::isfinite(v0)) {
-    r.status = Status::invalid_input;
-    r.reason = "coordinate overflows after normalization";
-    return r;
+  void lap(double StageSeconds::*stage) {
+    if (!stages_) return;
+    const auto now = std::chrono::steady_clock::now();
+    stages_->*stage += std::chrono::duration<double>(now - last_).count();
+    last_ = now;
   }
-  const double tolerance = options.relative_tolerance * plan.diagonal / plan.scale;
+
+ private:
+  StageSeconds* stages_;
+  std::chrono::steady_clock::time_point last_;
+};
+
+// Stage 5 for one lane: everything after the main candidate. sigma (n values) and V (vector k at
+// V[k n + r]) are this lane's, gathered.
+void decide(const InversionPlan& plan, double u0, double v0, const Candidate& main, const double* sigma,
+            const double* V, const InvertOptions& options, PointResult& r) {
   const int n = plan.degree;
-  const PointPolynomials pq = point_polynomials(plan, u0, v0);
-
+  const double tolerance = options.relative_tolerance * plan.diagonal / plan.scale;
   std::array<Candidate, 6> candidates;
   int count = 0;
+  if (std::isfinite(main.t) || main.path != Path::none) candidates[count++] = main;
   auto add = [&](double t, Path path) {
     if (count < static_cast<int>(candidates.size()))
       candidates[count++] = settle(plan, u0, v0, t, path, tolerance, options.refine);
   };
 
-  std::array<double, kMaxDegree * kMaxDegree> B, V;
-  std::array<double, kMaxDegree> sigma;
-  bool look_for_second = false;
-  if (n == 1) {
-    add(linear_parameter(pq), Path::bezout);
-  } else {
-    bezout_at(plan, u0, v0, B);
-    bool finite = true;
-    for (int i = 0; i < n * n; ++i) finite = finite && std::isfinite(B[i]);
-    if (!finite) {
-      r.status = Status::failed;
-      r.reason = "point so far from the curve that the Bezout matrix overflows";
-      return r;
-    }
-    kernels::symmetric_svd(n, std::span<const double>(B.data(), n * n), sigma, V);
-    if (sigma[0] > 0 && std::isfinite(sigma[0])) {
-      r.sigma_min = sigma[n - 1] / sigma[0];
-      r.sigma_next = sigma[n - 2] / sigma[0];
-      // Paper Sect. 3: the right singular vector of the smallest singular value.
-      add(parameter_from_null_vector(std::span<const double>(V.data() + (n - 1) * n, n)), Path::bezout);
-      look_for_second = n >= 3 && r.sigma_next <= kSecondNullDirectionRatio;
-    }
+  const bool have_svd = n >= 2 && sigma[0] > 0 && std::isfinite(sigma[0]);
+  if (have_svd) {
+    r.sigma_min = sigma[n - 1] / sigma[0];
+    r.sigma_next = sigma[n - 2] / sigma[0];
   }
+  const bool look_for_second = have_svd && n >= 3 && r.sigma_next <= kSecondNullDirectionRatio;
+  const PointPolynomials pq = point_polynomials(plan, u0, v0);
   const bool drop = n >= 2 && degree_drops(plan, pq, u0, v0);
   const bool settled = count > 0 && candidates[0].on_segment && !look_for_second && !drop;
   if (!settled) {
     if (drop) add(sylvester_parameter(pq), Path::sylvester);
-    if (n >= 3 && sigma[0] > 0 && std::isfinite(sigma[0])) {
+    if (have_svd && n >= 3) {
       // Nullity 2 (self-intersection, or a root driven towards infinity): both parameters from
       // the span of the two last singular vectors.
       double t[2];
-      const int roots = parameters_from_null_space(std::span<const double>(V.data() + (n - 1) * n, n),
-                                                   std::span<const double>(V.data() + (n - 2) * n, n), t);
+      const int roots = parameters_from_null_space(std::span<const double>(V + (n - 1) * n, n),
+                                                   std::span<const double>(V + (n - 2) * n, n), t);
       for (int i = 0; i < roots; ++i) add(t[i], Path::bezout_pair);
     }
   }
 
-  // Decide. On the segment at two distinct parameters: a double point.
+  // On the segment at two distinct parameters: a double point.
   const Candidate* first = nullptr;
   const Candidate* second = nullptr;
   for (int i = 0; i < count; ++i) {
@@ -246,23 +278,15 @@ PointResult invert_point(const InversionPlan& plan, Point point, const InvertOpt
     report(lo, Status::double_point);
     r.t2 = hi.t;
     r.path = Path::bezout_pair;
-    return r;
+    return;
   }
-  if (first) {
-    report(*first, Status::ok);
-    return r;
-  }
+  if (first) return report(*first, Status::ok);
   for (int i = 0; i < count; ++i)
-    if (candidates[i].on_curve) {
-      report(candidates[i], Status::outside_segment);
-      return r;
-    }
+    if (candidates[i].on_curve) return report(candidates[i], Status::outside_segment);
 
   // Off the curve (or every algebraic candidate failed): the nearest point of the segment.
-  if (!options.refine && count > 0 && std::isfinite(candidates[0].t)) {
-    report(candidates[0], Status::off_curve);  // --no-refine keeps the algebraic t
-    return r;
-  }
+  if (!options.refine && count > 0 && std::isfinite(candidates[0].t))
+    return report(candidates[0], Status::off_curve);  // --no-refine keeps the algebraic t
   double hint = -1.0;
   for (int i = 0; i < count; ++i)
     if (std::isfinite(candidates[i].t)) { hint = std::clamp(candidates[i].t, 0.0, 1.0); break; }
@@ -273,42 +297,173 @@ PointResult invert_point(const InversionPlan& plan, Point point, const InvertOpt
   if (!std::isfinite(nearest.distance)) {
     r.status = Status::failed;
     r.reason = "no finite parameter found";
-    return r;
+    return;
   }
   // The algebra can miss a point that is on the segment (e.g. a coordinate constant along a
   // curve with separate denominators makes p vanish identically); the distance decides.
   report(nearest, nearest.distance <= tolerance ? Status::ok : Status::off_curve);
+}
+
+// One batch (count <= kBatchLanes) of points of one curve through the five stages.
+void invert_batch(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+                  const InvertOptions& options, StageSeconds* stages) {
+  BatchWorkspace& w = batch_workspace();
+  const int n = plan.degree, nn = n * n;
+  const std::size_t stride = kBatchLanes;
+  const double tolerance = options.relative_tolerance * plan.diagonal / plan.scale;
+  StageClock clock(stages);
+
+  // 1. form B. Lanes that are already answered (bad input, unusable curve) are given B = identity
+  // so the kernel sees only finite, harmless matrices.
+  for (std::size_t l = 0; l < count; ++l) {
+    PointResult& r = results[l];
+    r = PointResult{};
+    w.active[l] = 0;
+    w.u[l] = w.v[l] = 0.0;
+    if (!std::isfinite(points[l].x) || !std::isfinite(points[l].y)) {
+      r.status = Status::invalid_input;
+      r.reason = "non-finite coordinate";
+    } else if (!plan.usable) {
+      r.status = Status::failed;
+      r.reason = plan.reason;
+    } else {
+      const auto uv = plan.normalize(points[l].x, points[l].y);
+      if (!std::isfinite(uv[0]) || !std::isfinite(uv[1])) {
+        r.status = Status::invalid_input;
+        r.reason = "coordinate overflows after normalization";
+      } else {
+        w.u[l] = uv[0];
+        w.v[l] = uv[1];
+        w.active[l] = 1;
+      }
+    }
+  }
+  if (n >= 2) {
+    for (int i = 0; i < nn; ++i) {
+      double* row = w.B.data() + i * stride;
+      const double b0 = plan.B0[i], bx = plan.Bx[i], by = plan.By[i], bxy = plan.Bxy[i];
+      for (std::size_t l = 0; l < count; ++l) row[l] = b0 - w.u[l] * bx - w.v[l] * by + (w.u[l] * w.v[l]) * bxy;
+    }
+    for (std::size_t l = 0; l < count; ++l) {
+      bool finite = w.active[l] != 0;
+      for (int i = 0; i < nn && finite; ++i) finite = std::isfinite(w.B[i * stride + l]);
+      if (w.active[l] && !finite) {
+        results[l].status = Status::failed;
+        results[l].reason = "point so far from the curve that the Bezout matrix overflows";
+        w.active[l] = 0;
+      }
+      if (!w.active[l])
+        for (int i = 0; i < nn; ++i) w.B[i * stride + l] = (i % (n + 1) == 0) ? 1.0 : 0.0;
+    }
+  }
+  clock.lap(&StageSeconds::form_b);
+
+  // 2. kernel.
+  if (n >= 2) batch_symmetric_svd(n, count, stride, w.B.data(), w.sigma.data(), w.V.data());
+  clock.lap(&StageSeconds::kernel);
+
+  // 3. read-out: the right singular vector of the smallest singular value (degree 1: B is 1 x 1
+  // with no null vector to read; p and q are linear, see linear_parameter).
+  for (std::size_t l = 0; l < count; ++l) {
+    w.t_algebraic[l] = PointResult::nan;
+    if (!w.active[l]) continue;
+    if (n == 1) {
+      w.t_algebraic[l] = linear_parameter(point_polynomials(plan, w.u[l], w.v[l]));
+    } else if (w.sigma[l] > 0 && std::isfinite(w.sigma[l])) {
+      std::array<double, kMaxDegree> z;
+      for (int r = 0; r < n; ++r) z[r] = w.V[((n - 1) * n + r) * stride + l];
+      w.t_algebraic[l] = parameter_from_null_vector(std::span<const double>(z.data(), n));
+    }
+  }
+  clock.lap(&StageSeconds::read_out);
+
+  // 4. refine and measure the main candidate.
+  for (std::size_t l = 0; l < count; ++l) {
+    w.main[l] = Candidate{};
+    if (w.active[l] && (n == 1 || (w.sigma[l] > 0 && std::isfinite(w.sigma[l]))))
+      w.main[l] = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout, tolerance, options.refine);
+  }
+  clock.lap(&StageSeconds::refine);
+
+  // 5. decide.
+  std::array<double, kMaxDegree> sigma;
+  std::array<double, kMaxDegree * kMaxDegree> V;
+  for (std::size_t l = 0; l < count; ++l) {
+    if (!w.active[l]) continue;
+    for (int k = 0; k < n && n >= 2; ++k) sigma[k] = w.sigma[k * stride + l];
+    for (int i = 0; i < nn && n >= 2; ++i) V[i] = w.V[i * stride + l];
+    if (n == 1) sigma[0] = 0.0;
+    decide(plan, w.u[l], w.v[l], w.main[l], sigma.data(), V.data(), options, results[l]);
+  }
+  clock.lap(&StageSeconds::decide);
+}
+
+// All points of one curve: batches in parallel.
+void invert_curve(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
+                  const InvertOptions& options, StageSeconds* stages);
+
+}  // namespace
+
+PointResult invert_point(const InversionPlan& plan, Point point, const InvertOptions& options) {
+  PointResult r;
+  invert_batch(plan, &point, &r, 1, options, nullptr);
   return r;
 }
 
 namespace {
 
-template <typename PlanOf>
-void invert_range(std::size_t count, const InvertOptions& options, PlanOf&& body) {
+template <typename Body>
+void for_each_batch(std::size_t count, const InvertOptions& options, Body&& body) {
+  const std::size_t batches = (count + kBatchLanes - 1) / kBatchLanes;
   auto run = [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) body(i);
+    for (std::size_t b = range.begin(); b != range.end(); ++b)
+      body(b * kBatchLanes, std::min(count, (b + 1) * kBatchLanes));
   };
-  if (options.threads == 1 || count < 64) {
-    run(tbb::blocked_range<std::size_t>(0, count));
+  if (options.threads == 1 || batches <= 1) {
+    run(tbb::blocked_range<std::size_t>(0, batches));
     return;
   }
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256), run); });
+  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batches, 4), run); });
+}
+
+void invert_curve(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
+                  const InvertOptions& options, StageSeconds* stages) {
+  // Stage times are summed per thread, then added up (seconds of work, not wall time).
+  tbb::enumerable_thread_specific<StageSeconds> per_thread;
+  for_each_batch(points.size(), options, [&](std::size_t begin, std::size_t end) {
+    invert_batch(plan, points.data() + begin, results.data() + begin, end - begin, options,
+                 stages ? &per_thread.local() : nullptr);
+  });
+  if (stages)
+    for (const StageSeconds& s : per_thread) {
+      stages->form_b += s.form_b; stages->kernel += s.kernel; stages->read_out += s.read_out;
+      stages->refine += s.refine; stages->decide += s.decide;
+    }
 }
 
 }  // namespace
 
 void invert(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
-            const InvertOptions& options) {
-  invert_range(points.size(), options,
-               [&](std::size_t i) { results[i] = invert_point(plan, points[i], options); });
+            const InvertOptions& options, StageSeconds* stages) {
+  invert_curve(plan, points, results, options, stages);
 }
 
 void invert(std::span<const InversionPlan> plans, std::span<const int> curve_of, std::span<const Point> points,
             std::span<PointResult> results, const InvertOptions& options) {
-  invert_range(points.size(), options, [&](std::size_t i) {
-    if (curve_of[i] >= 0) results[i] = invert_point(plans[curve_of[i]], points[i], options);
-  });
+  // Batches must hold points of one curve: runs of consecutive points of the same curve are
+  // inverted in place (the common case: files grouped by curve); a point whose curve differs from
+  // both neighbours forms a run of one. Rejected rows (curve_of < 0) keep what the caller set.
+  std::size_t begin = 0;
+  const std::size_t count = points.size();
+  while (begin < count) {
+    std::size_t end = begin + 1;
+    while (end < count && curve_of[end] == curve_of[begin]) ++end;
+    if (curve_of[begin] >= 0)
+      invert_curve(plans[curve_of[begin]], points.subspan(begin, end - begin), results.subspan(begin, end - begin),
+                   options, nullptr);
+    begin = end;
+  }
 }
 
 }  // namespace bezinv
