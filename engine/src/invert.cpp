@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "bezinv/bernstein.hpp"
+#include "bezinv/kernels/batch.hpp"
 #include "bezinv/kernels/symmetric_svd.hpp"
 #include "bezinv/null_vector.hpp"
 #include "bezinv/sylvester.hpp"
@@ -192,7 +193,18 @@ BatchWorkspace& batch_workspace() {
 
 // Stage 2 for a whole batch. Lane l's B is entry (r, c) at B[(r n + c) stride + l]; sigma and V
 // come back in the same lane-major layout (kernels/include/bezinv/kernels/batch.hpp).
+//
+// Up to kLaneBatchedMaxDegree the lane-batched Jacobi kernel (one matrix per SIMD lane) is used;
+// above it Eigen's tridiagonal QR, one matrix at a time, is faster: Jacobi costs ~n^3 per sweep
+// for 6-9 sweeps (measured with bench/kernels_bench.cpp on AVX-512: batched Jacobi 101k vs Eigen
+// 66k matrices/s at n = 15, 46k vs 37k at n = 20, 21k vs 31k at n = 24; AVX2 falls behind at 20).
+constexpr int kLaneBatchedMaxDegree = 16;
+
 void batch_symmetric_svd(int n, std::size_t count, std::size_t stride, const double* B, double* sigma, double* V) {
+  if (n <= kLaneBatchedMaxDegree) {
+    kernels::active_implementation().symmetric_svd(n, count, stride, B, sigma, V);
+    return;
+  }
   std::array<double, kMaxDegree * kMaxDegree> b, vectors;
   std::array<double, kMaxDegree> values;
   const int nn = n * n;
@@ -403,6 +415,11 @@ void invert_curve(const InversionPlan& plan, std::span<const Point> points, std:
                   const InvertOptions& options, StageSeconds* stages);
 
 }  // namespace
+
+std::string_view active_kernel_name() {
+  // The lane-batched implementation (degrees <= kLaneBatchedMaxDegree; Eigen per matrix above).
+  return kernels::active_implementation().name;
+}
 
 PointResult invert_point(const InversionPlan& plan, Point point, const InvertOptions& options) {
   PointResult r;

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <string_view>
 
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
@@ -48,6 +49,9 @@ struct InvertOptions {
 };
 
 struct Point { double x, y; };
+
+// Name of the SVD kernel the pipeline uses in this process (see kernels/).
+std::string_view active_kernel_name();
 
 // One point (the reference path: everything else must agree with it).
 PointResult invert_point(const InversionPlan& plan, Point point, const InvertOptions& options = {});

@@ -1,0 +1,130 @@
+// The lane-batched kernels (kernels/batch.hpp) per implementation and size, against Eigen's
+// fixed-size SelfAdjointEigenSolver one matrix at a time. Each benchmark cycles over kDistinct
+// matrices in batches of kBatch, so the inputs are not cache-hot (Ceres *_benchmark.cc style).
+// items_per_second = matrices per second.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Eigenvalues>
+#include <cstddef>
+#include <memory>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bezinv/kernels/batch.hpp"
+
+namespace {
+
+using namespace bezinv::kernels;
+
+constexpr std::size_t kDistinct = 1024;  // matrices cycled over
+constexpr std::size_t kBatch = 64;       // matrices per kernel call (a multiple of every width)
+
+// kDistinct random symmetric n x n matrices with a singular value forced to 0 (the kernels'
+// use case), stored as kDistinct / kBatch SoA batches.
+struct Inputs {
+  int n;
+  std::vector<std::vector<double>> batches;
+  std::vector<Eigen::MatrixXd> dense;
+
+  explicit Inputs(int n_) : n(n_) {
+    std::mt19937_64 rng(42 + n);
+    std::normal_distribution<double> g;
+    for (std::size_t i = 0; i < kDistinct; ++i) {
+      Eigen::MatrixXd a(n, n);
+      for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) a(r, c) = g(rng);
+      Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(a).householderQ() * Eigen::MatrixXd::Identity(n, n);
+      Eigen::VectorXd s = Eigen::VectorXd::Random(n);
+      s(n - 1) = 0;
+      dense.push_back(q * s.asDiagonal() * q.transpose());
+    }
+    const std::size_t stride = batch_stride(kBatch);
+    for (std::size_t b = 0; b < kDistinct / kBatch; ++b) {
+      std::vector<double> soa(static_cast<std::size_t>(n) * n * stride);
+      for (std::size_t l = 0; l < kBatch; ++l)
+        for (int r = 0; r < n; ++r)
+          for (int c = 0; c < n; ++c) soa[(r * n + c) * stride + l] = dense[b * kBatch + l](r, c);
+      batches.push_back(std::move(soa));
+    }
+  }
+};
+
+const Inputs& inputs(int n) {
+  static std::vector<std::unique_ptr<Inputs>> cache(kMaxBatchSize + 1);
+  if (!cache[n]) cache[n] = std::make_unique<Inputs>(n);
+  return *cache[n];
+}
+
+void BM_KernelSymmetricSvd(benchmark::State& state, const Implementation* impl, int n) {
+  const Inputs& in = inputs(n);
+  const std::size_t stride = batch_stride(kBatch);
+  std::vector<double> sigma(n * stride), V(static_cast<std::size_t>(n) * n * stride);
+  std::size_t b = 0;
+  for (auto _ : state) {
+    impl->symmetric_svd(n, kBatch, stride, in.batches[b].data(), sigma.data(), V.data());
+    benchmark::DoNotOptimize(sigma.data());
+    benchmark::ClobberMemory();
+    b = (b + 1) % in.batches.size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+}
+
+void BM_KernelNullVector(benchmark::State& state, const Implementation* impl, int n) {
+  const Inputs& in = inputs(n);
+  const std::size_t stride = batch_stride(kBatch);
+  std::vector<double> z(n * stride), defect(stride);
+  std::size_t b = 0;
+  for (auto _ : state) {
+    impl->null_vector(n, kBatch, stride, in.batches[b].data(), z.data(), defect.data());
+    benchmark::DoNotOptimize(z.data());
+    benchmark::ClobberMemory();
+    b = (b + 1) % in.batches.size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+}
+
+// The baseline: Eigen's fixed-size self-adjoint eigensolver, one matrix per call.
+template <int N>
+void BM_KernelEigenSelfAdjoint(benchmark::State& state) {
+  const Inputs& in = inputs(N);
+  std::vector<Eigen::Matrix<double, N, N>> fixed;
+  for (const auto& m : in.dense) fixed.push_back(m);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> solver;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    solver.compute(fixed[i], Eigen::ComputeEigenvectors);
+    benchmark::DoNotOptimize(solver.eigenvectors().data());
+    i = (i + 1) % fixed.size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+
+constexpr int kSizes[] = {3, 5, 8, 15, 20, 24};
+
+int register_kernels() {
+  for (const Implementation* impl : available_implementations())
+    for (int n : kSizes) {
+      // Appended piece by piece: GCC 12 gives a false -Wrestrict on chained std::string operator+.
+      std::string suffix = "/";
+      suffix += impl->name;
+      suffix += "/n:";
+      suffix += std::to_string(n);
+      const std::string svd = std::string("BM_KernelSymmetricSvd").append(suffix);
+      const std::string null = std::string("BM_KernelNullVector").append(suffix);
+      benchmark::RegisterBenchmark(svd.c_str(), BM_KernelSymmetricSvd, impl, n);
+      benchmark::RegisterBenchmark(null.c_str(), BM_KernelNullVector, impl, n);
+    }
+  return 0;
+}
+const int registered = register_kernels();
+
+BENCHMARK_TEMPLATE(BM_KernelEigenSelfAdjoint, 3);
+BENCHMARK_TEMPLATE(BM_KernelEigenSelfAdjoint, 5);
+BENCHMARK_TEMPLATE(BM_KernelEigenSelfAdjoint, 8);
+BENCHMARK_TEMPLATE(BM_KernelEigenSelfAdjoint, 15);
+BENCHMARK_TEMPLATE(BM_KernelEigenSelfAdjoint, 20);
+BENCHMARK_TEMPLATE(BM_KernelEigenSelfAdjoint, 24);
+
+}  // namespace

@@ -1,0 +1,52 @@
+#pragma once
+// Lane-batched kernels: many small symmetric n x n matrices at once, one matrix per SIMD lane.
+// The kernels know nothing about curves: they take matrices and return singular values and vectors.
+//
+// Layout (structure of arrays). A batch holds `count` matrices padded to `stride` lanes
+// (stride = count rounded up to kBatchAlignment, padding lanes hold any finite values):
+//     matrix entry (r, c) of lane l        B[(r * n + c) * stride + l]      (only r >= c is read)
+//     singular value k of lane l           sigma[k * stride + l]            (descending)
+//     component r of singular vector k     V[(k * n + r) * stride + l]
+//     component r of the null vector       z[r * stride + l]
+// so that one SIMD load fetches the same entry of consecutive matrices.
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+namespace bezinv::kernels {
+
+inline constexpr int kMaxBatchSize = 32;    // largest n
+inline constexpr int kBatchAlignment = 8;   // lanes per AVX-512 register of doubles; strides are multiples
+
+// One instruction set's kernels. All function pointers are non-null.
+struct Implementation {
+  std::string_view name;  // "scalar", "avx2", "avx512"
+
+  // Singular value decomposition of every matrix of the batch (for symmetric B: its Jacobi
+  // eigendecomposition; sigma = |lambda|, vectors = eigenvectors, both sorted by sigma descending).
+  void (*symmetric_svd)(int n, std::size_t count, std::size_t stride, const double* B, double* sigma,
+                        double* V);
+
+  // The fast path: the null vector of every (nearly) singular matrix by LU with partial pivoting
+  // and inverse iteration from (1, ..., 1) (every Bernstein basis vector is positive, so it always
+  // has a component along the null vector). Writes z (unit 2-norm) and, per lane, a quality
+  // estimate `defect[l]` >= 0: small when the iteration converged to a simple null vector;
+  // lanes whose defect exceeds the caller's threshold must be redone with symmetric_svd.
+  void (*null_vector)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
+                      double* defect);
+};
+
+// The implementation for this process: the best the CPU supports, or the one named by the
+// environment variable BEZINV_KERNEL (scalar | avx2 | avx512), chosen once at first use.
+// An unknown or unsupported BEZINV_KERNEL is reported on stderr once and the best is used.
+const Implementation& active_implementation();
+
+// Every implementation this build has that this CPU can run (scalar first). For tests and benchmarks.
+std::span<const Implementation* const> available_implementations();
+
+// stride for a batch of `count` matrices.
+constexpr std::size_t batch_stride(std::size_t count) {
+  return (count + kBatchAlignment - 1) / kBatchAlignment * kBatchAlignment;
+}
+
+}  // namespace bezinv::kernels

@@ -1,0 +1,26 @@
+#pragma once
+// The numbers that decide, for the lane-batched kernels (bezinv/kernels/batch.hpp), in one place.
+#include <limits>
+
+namespace bezinv::kernels::batch {
+
+// Unit roundoff scale used by every tolerance below (2^-52).
+inline constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+
+// Cyclic Jacobi stops when, in every lane, off(A) <= kJacobiTolerance * ||A||_F (off = Frobenius
+// norm of the strict off-diagonal part). Convergence is quadratic once off(A) is small
+// (Golub & Van Loan, Sect. 8.5.3), so one more sweep after off ~ 1e-8 reaches the rounding level;
+// rounding in a rotation only produces errors proportional to the (already tiny) off-diagonal
+// entries, so this level is attainable. kJacobiMaxSweeps caps pathological lanes; in practice
+// 6..9 sweeps are enough for n <= 32.
+inline constexpr double kJacobiTolerance = kEpsilon;
+inline constexpr int kJacobiMaxSweeps = 15;
+
+// Inverse iteration for the null vector: iterations from (1, ..., 1). With a pivot of order
+// eps ||B||, one iteration already damps the other directions by sigma_n / sigma_{n-1}; the next
+// two are there to *measure* convergence (the defect).
+inline constexpr int kInverseIterations = 3;
+// Inverse iterations orthogonal to the null vector, estimating 1 / sigma_{n-1} for the defect.
+inline constexpr int kDeflatedIterations = 2;
+
+}  // namespace bezinv::kernels::batch

@@ -1,0 +1,91 @@
+// The implementation table and the once-per-process choice (simdjson's `implementation` model):
+// the kernels are chosen per process, never per point.
+#include "batch/targets.hpp"  // first: the same target set as the kernels
+#include <hwy/targets.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "batch/kernels.hpp"
+#include "bezinv/kernels/batch.hpp"
+#include "bezinv/kernels/detail/batch_selection.hpp"
+
+namespace bezinv::kernels {
+namespace {
+
+struct Candidate {
+  std::string_view name;
+  std::int64_t target;  // Highway target bit
+};
+// Scalar first, best last.
+constexpr std::array<Candidate, 3> kCandidates{{{"scalar", HWY_BASELINE_SCALAR}, {"avx2", HWY_AVX2}, {"avx512", HWY_AVX3}}};
+
+struct Table {
+  std::array<Implementation, kCandidates.size()> storage{};
+  std::array<const Implementation*, kCandidates.size()> available{};
+  std::size_t count = 0;
+
+  Table() {
+    const std::int64_t supported = hwy::SupportedTargets();
+    for (std::size_t i = 0; i < kCandidates.size(); ++i) {
+      const auto svd = batch::symmetric_svd_kernel(kCandidates[i].target);
+      const auto null = batch::null_vector_kernel(kCandidates[i].target);
+      if (svd == nullptr || null == nullptr || (supported & kCandidates[i].target) == 0) continue;
+      storage[count] = Implementation{kCandidates[i].name, svd, null};
+      available[count] = &storage[count];
+      ++count;
+    }
+  }
+};
+
+const Table& table() {
+  static const Table instance;
+  return instance;
+}
+
+}  // namespace
+
+std::span<const Implementation* const> available_implementations() {
+  return {table().available.data(), table().count};
+}
+
+namespace detail {
+
+const Implementation* implementation_named(std::string_view name) {
+  for (const Implementation* implementation : available_implementations())
+    if (implementation->name == name) return implementation;
+  return nullptr;
+}
+
+const Implementation& best_implementation() { return *available_implementations().back(); }
+
+const Implementation& select_implementation(const char* requested, std::string& warning) {
+  warning.clear();
+  if (requested == nullptr) return best_implementation();
+  if (const Implementation* named = implementation_named(requested)) return *named;
+  const Implementation& best = best_implementation();
+  // Appended piece by piece: GCC 12 gives a false -Wrestrict on chained std::string operator+.
+  warning = "bezinv: BEZINV_KERNEL=";
+  warning += requested;
+  warning += " is unknown or not supported by this CPU; using ";
+  warning += best.name;
+  return best;
+}
+
+}  // namespace detail
+
+const Implementation& active_implementation() {
+  // Reporting on stderr here is the one exception to "never print inside the library": the choice
+  // is made once, from the environment, and a wrong BEZINV_KERNEL must not go unnoticed.
+  static const Implementation& chosen = [] () -> const Implementation& {
+    std::string warning;
+    const Implementation& implementation = detail::select_implementation(std::getenv("BEZINV_KERNEL"), warning);
+    if (!warning.empty()) std::fprintf(stderr, "%s\n", warning.c_str());
+    return implementation;
+  }();
+  return chosen;
+}
+
+}  // namespace bezinv::kernels

@@ -1,0 +1,18 @@
+#pragma once
+// The per-instruction-set entry points of the batch kernels, looked up by Highway target bit
+// (HWY_EMU128, HWY_AVX2, HWY_AVX3). Only implementation.cpp needs this.
+#include <cstddef>
+#include <cstdint>
+
+namespace bezinv::kernels::batch {
+
+using SymmetricSvdKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* sigma,
+                                    double* V);
+using NullVectorKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
+                                  double* defect);
+
+// nullptr when this build did not compile `target`.
+SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);
+NullVectorKernel null_vector_kernel(std::int64_t target);
+
+}  // namespace bezinv::kernels::batch

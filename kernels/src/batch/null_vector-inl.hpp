@@ -1,0 +1,231 @@
+// Lane-batched null vector by LU with partial pivoting and inverse iteration, one matrix per lane.
+// Re-included once per instruction set by hwy/foreach_target.h (see null_vector.cpp).
+#if defined(BEZINV_KERNELS_BATCH_NULL_VECTOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef BEZINV_KERNELS_BATCH_NULL_VECTOR_INL_H_
+#undef BEZINV_KERNELS_BATCH_NULL_VECTOR_INL_H_
+#else
+#define BEZINV_KERNELS_BATCH_NULL_VECTOR_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <limits>
+
+#include "batch/constants.hpp"
+#include "batch/sizes-inl.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace bezinv::kernels::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// PA = LU of the (Frobenius-normalised) matrix, every lane with its own pivot rows.
+template <int N, class D>
+struct LaneLu {
+  static constexpr std::size_t L = hn::MaxLanes(D());
+  HWY_ALIGN double lu[N * N * L];        // unit L below the diagonal, U on and above
+  HWY_ALIGN double inv_pivot[N * L];     // 1 / u_kk
+  HWY_ALIGN double pivot_row[N * L];     // row swapped with row k at step k (as a double, for selects)
+
+  double* at(int r, int c) { return lu + (r * N + c) * L; }
+
+  void factor(D d) {
+    // A pivot that is 0 (the matrix is singular by design) or below eps ||B|| (= eps here, B being
+    // normalised) is rounding noise: replace it by +-eps so that the solves amplify the null
+    // direction by ~1/eps instead of dividing by zero. This is exactly what inverse iteration wants.
+    const auto tiny = hn::Set(d, batch::kEpsilon);
+    for (int k = 0; k < N; ++k) {
+      auto best = hn::Abs(hn::Load(d, at(k, k)));
+      auto best_row = hn::Set(d, static_cast<double>(k));
+      for (int i = k + 1; i < N; ++i) {
+        const auto v = hn::Abs(hn::Load(d, at(i, k)));
+        const auto larger = hn::Gt(v, best);
+        best = hn::IfThenElse(larger, v, best);
+        best_row = hn::IfThenElse(larger, hn::Set(d, static_cast<double>(i)), best_row);
+      }
+      hn::Store(best_row, d, pivot_row + k * L);
+      // Swap rows k and best_row lane by lane (whole rows, so the multipliers move along, as in LAPACK).
+      for (int i = k + 1; i < N; ++i) {
+        const auto swap = hn::Eq(best_row, hn::Set(d, static_cast<double>(i)));
+        if (hn::AllFalse(d, swap)) continue;
+        for (int j = 0; j < N; ++j) {
+          const auto a = hn::Load(d, at(k, j));
+          const auto b = hn::Load(d, at(i, j));
+          hn::Store(hn::IfThenElse(swap, b, a), d, at(k, j));
+          hn::Store(hn::IfThenElse(swap, a, b), d, at(i, j));
+        }
+      }
+      auto pivot = hn::Load(d, at(k, k));
+      pivot = hn::IfThenElse(hn::Le(hn::Abs(pivot), tiny), hn::CopySign(tiny, pivot), pivot);
+      hn::Store(pivot, d, at(k, k));
+      const auto inv = hn::Div(hn::Set(d, 1.0), pivot);
+      hn::Store(inv, d, inv_pivot + k * L);
+      for (int i = k + 1; i < N; ++i) {
+        const auto l = hn::Mul(hn::Load(d, at(i, k)), inv);
+        hn::Store(l, d, at(i, k));
+        for (int j = k + 1; j < N; ++j) hn::Store(hn::NegMulAdd(l, hn::Load(d, at(k, j)), hn::Load(d, at(i, j))), d, at(i, j));
+      }
+    }
+  }
+
+  // x <- U^{-1} L^{-1} P x
+  void solve(D d, double* HWY_RESTRICT x) {
+    for (int k = 0; k < N; ++k) {
+      const auto row = hn::Load(d, pivot_row + k * L);
+      for (int i = k + 1; i < N; ++i) {
+        const auto swap = hn::Eq(row, hn::Set(d, static_cast<double>(i)));
+        const auto a = hn::Load(d, x + k * L);
+        const auto b = hn::Load(d, x + i * L);
+        hn::Store(hn::IfThenElse(swap, b, a), d, x + k * L);
+        hn::Store(hn::IfThenElse(swap, a, b), d, x + i * L);
+      }
+    }
+    for (int i = 1; i < N; ++i) {
+      auto xi = hn::Load(d, x + i * L);
+      for (int j = 0; j < i; ++j) xi = hn::NegMulAdd(hn::Load(d, at(i, j)), hn::Load(d, x + j * L), xi);
+      hn::Store(xi, d, x + i * L);
+    }
+    for (int i = N - 1; i >= 0; --i) {
+      auto xi = hn::Load(d, x + i * L);
+      for (int j = i + 1; j < N; ++j) xi = hn::NegMulAdd(hn::Load(d, at(i, j)), hn::Load(d, x + j * L), xi);
+      hn::Store(hn::Mul(xi, hn::Load(d, inv_pivot + i * L)), d, x + i * L);
+    }
+  }
+};
+
+template <int N, class D>
+HWY_INLINE hn::Vec<D> dot(D d, const double* HWY_RESTRICT x, const double* HWY_RESTRICT y) {
+  constexpr std::size_t L = hn::MaxLanes(D());
+  auto sum = hn::Zero(d);
+  for (int i = 0; i < N; ++i) sum = hn::MulAdd(hn::Load(d, x + i * L), hn::Load(d, y + i * L), sum);
+  return sum;
+}
+
+// x <- x / ||x||_2, returning ||x||_2.
+template <int N, class D>
+HWY_INLINE hn::Vec<D> normalize(D d, double* HWY_RESTRICT x) {
+  constexpr std::size_t L = hn::MaxLanes(D());
+  const auto norm = hn::Sqrt(dot<N>(d, x, x));
+  const auto inv = hn::Div(hn::Set(d, 1.0), norm);
+  for (int i = 0; i < N; ++i) hn::Store(hn::Mul(hn::Load(d, x + i * L), inv), d, x + i * L);
+  return norm;
+}
+
+// Sign-insensitive chordal distance min ||x -+ y|| = 2 sin(angle / 2) between unit vectors. Unlike
+// sqrt(1 - (x.y)^2) it keeps its relative accuracy for tiny angles (1e-10 is not lost in 1 - c^2).
+template <int N, class D>
+HWY_INLINE hn::Vec<D> chord(D d, const double* HWY_RESTRICT x, const double* HWY_RESTRICT y) {
+  constexpr std::size_t L = hn::MaxLanes(D());
+  auto minus = hn::Zero(d), plus = hn::Zero(d);
+  for (int i = 0; i < N; ++i) {
+    const auto a = hn::Load(d, x + i * L), b = hn::Load(d, y + i * L);
+    const auto dm = hn::Sub(a, b), dp = hn::Add(a, b);
+    minus = hn::MulAdd(dm, dm, minus);
+    plus = hn::MulAdd(dp, dp, plus);
+  }
+  return hn::Sqrt(hn::Min(minus, plus));
+}
+
+// The defect is the largest of three scale-free numbers, each catching one way the fast path fails:
+//   1. chord(x_{k-1}, x_k) over the last two iterations: the iteration has not settled (no gap);
+//   2. ||B z|| / ||B||_F: z is not a null vector (B clearly non-singular);
+//   3. eps ||B||_F / sigma_{n-1}, with 1/sigma_{n-1} estimated by inverse iteration orthogonal to z:
+//      the first-order forward error of a computed null vector (backward error eps ||B|| over the
+//      gap, Wedin / Davis-Kahan). For nullity 2 it is ~1 however the rounding happened to split
+//      the two tiny singular values, which measure 1 alone cannot promise: with two tiny singular
+//      values of ratio r, the iterates converge at rate 1/r in the 2-D null space, and r may be
+//      large by chance.
+// Rank n-1 with sigma_{n-1} >= 1e-4 ||B||: all three ~1e-12 or less. Capped at 1.
+template <int N, class D>
+HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, std::size_t lanes,
+                                    const double* HWY_RESTRICT B, double* HWY_RESTRICT z,
+                                    double* HWY_RESTRICT defect) {
+  constexpr std::size_t L = hn::MaxLanes(D());
+  const auto one = hn::Set(d, 1.0);
+  auto entry = [&](int r, int c) {  // B(r, c) from the lower triangle
+    return hn::LoadU(d, B + static_cast<std::size_t>(r >= c ? r * N + c : c * N + r) * stride + first);
+  };
+  auto norm2 = hn::Zero(d);
+  for (int r = 0; r < N; ++r)
+    for (int c = 0; c < N; ++c) norm2 = hn::MulAdd(entry(r, c), entry(r, c), norm2);
+  const auto norm = hn::Sqrt(norm2);
+  const auto zero_matrix = hn::Eq(norm, hn::Zero(d));
+  const auto scale = hn::IfThenElse(zero_matrix, one, hn::Div(one, norm));
+
+  LaneLu<N, D> lu;
+  for (int r = 0; r < N; ++r)
+    for (int c = 0; c < N; ++c) hn::Store(hn::Mul(entry(r, c), scale), d, lu.at(r, c));
+  lu.factor(d);
+
+  // Inverse iteration from (1, ..., 1) / sqrt(n).
+  HWY_ALIGN double x[N * L];
+  HWY_ALIGN double previous[N * L];
+  for (int i = 0; i < N; ++i) hn::Store(one, d, x + i * L);
+  normalize<N>(d, x);
+  auto unsettled = hn::Zero(d);
+  for (int iteration = 0; iteration < batch::kInverseIterations; ++iteration) {
+    std::copy(x, x + N * L, previous);
+    lu.solve(d, x);
+    normalize<N>(d, x);
+    if (iteration + 2 >= batch::kInverseIterations) unsettled = hn::Max(unsettled, chord<N>(d, previous, x));
+  }
+
+  // ||B z|| / ||B||_F with the original entries.
+  auto residual2 = hn::Zero(d);
+  for (int r = 0; r < N; ++r) {
+    auto row = hn::Zero(d);
+    for (int c = 0; c < N; ++c) row = hn::MulAdd(hn::Mul(entry(r, c), scale), hn::Load(d, x + c * L), row);
+    residual2 = hn::MulAdd(row, row, residual2);
+  }
+  auto result = hn::Max(unsettled, hn::Sqrt(residual2));
+
+  if constexpr (N > 1) {
+    // w: a fixed vector of mixed signs and sizes, then kept orthogonal to z after every solve (the
+    // solve re-amplifies the rounding-level z component by 1/eps).
+    HWY_ALIGN double w[N * L];
+    auto project = [&] {
+      const auto along = dot<N>(d, w, x);
+      for (int i = 0; i < N; ++i)
+        hn::Store(hn::NegMulAdd(along, hn::Load(d, x + i * L), hn::Load(d, w + i * L)), d, w + i * L);
+    };
+    for (int i = 0; i < N; ++i) hn::Store(hn::Set(d, (i % 2 ? -1.0 : 1.0) * (1.0 + 0.37 * i)), d, w + i * L);
+    project();
+    normalize<N>(d, w);
+    auto growth = hn::Zero(d);
+    for (int iteration = 0; iteration < batch::kDeflatedIterations; ++iteration) {
+      lu.solve(d, w);
+      project();
+      growth = normalize<N>(d, w);  // ~ 1 / sigma_{n-1} of the normalised matrix
+    }
+    result = hn::Max(result, hn::Mul(hn::Set(d, batch::kEpsilon), growth));
+  }
+  // A zero matrix has nullity n: flagged unless n = 1 (then z = (1) is its null vector). NaN (from
+  // an overflow) compares false and is mapped to 1, so that such a lane is redone.
+  result = hn::IfThenElse(zero_matrix, hn::Set(d, N == 1 ? 0.0 : 1.0), result);
+  result = hn::IfThenElse(hn::Le(result, one), result, one);
+
+  HWY_ALIGN double defect_lanes[L];
+  hn::Store(result, d, defect_lanes);
+  for (std::size_t l = 0; l < lanes; ++l) {
+    defect[first + l] = defect_lanes[l];
+    for (int r = 0; r < N; ++r) z[static_cast<std::size_t>(r) * stride + first + l] = x[r * L + l];
+  }
+}
+
+template <int N>
+void null_vector_fixed(std::size_t count, std::size_t stride, const double* B, double* z, double* defect) {
+  const hn::ScalableTag<double> d;
+  constexpr std::size_t L = hn::MaxLanes(hn::ScalableTag<double>());
+  for (std::size_t first = 0; first < count; first += L)
+    null_vector_group<N>(d, stride, first, std::min(L, count - first), B, z, defect);
+}
+
+void null_vector_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z, double* defect) {
+  dispatch_size(n, [&](auto size) { null_vector_fixed<decltype(size)::value>(count, stride, B, z, defect); });
+}
+
+}  // namespace bezinv::kernels::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // BEZINV_KERNELS_BATCH_NULL_VECTOR_INL_H_

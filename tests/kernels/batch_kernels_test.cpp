@@ -1,0 +1,288 @@
+// The lane-batched kernels (kernels/batch.hpp), every available implementation, n = 1..32, batch
+// sizes around the vector widths (2, 4, 8 lanes). References are never the kernels' own output:
+// Eigen::JacobiSVD per lane, or matrices built as B = Q diag(sigma) Q^T with known sigma and Q.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "bezinv/kernels/batch.hpp"
+#include "bezinv/kernels/detail/batch_selection.hpp"
+#include "support/measure.hpp"
+
+namespace bezinv::kernels {
+namespace {
+
+using test_support::kEps;
+using test_support::sci;
+using Dense = Eigen::MatrixXd;
+
+constexpr std::size_t kCounts[] = {1, 2, 3, 4, 5, 7, 8, 9, 15, 16, 17, 33};
+// Both sides are Jacobi methods with errors ~ n eps sigma_1; measured worst ~1.1e-14 at n = 22.
+constexpr double kSigmaTolerance = 2e-14;
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+Dense random_symmetric(int n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Dense b(n, n);
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c <= r; ++c) b(r, c) = b(c, r) = u(rng);
+  return b;
+}
+
+Dense random_orthogonal(int n, std::mt19937_64& rng) {
+  std::normal_distribution<double> g;
+  Dense a(n, n);
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) a(r, c) = g(rng);
+  return Eigen::HouseholderQR<Dense>(a).householderQ() * Dense::Identity(n, n);
+}
+
+// Q diag(sigma) Q^T with sigma_k = 0 for the last `nullity` k and the others in [0.1, 1]. The
+// null space is spanned by the last `nullity` columns of Q (up to rounding of the product).
+struct Constructed {
+  Dense b, q;
+};
+Constructed with_nullity(int n, int nullity, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.1, 1.0);
+  Dense q = random_orthogonal(n, rng);
+  Eigen::VectorXd sigma(n);
+  for (int k = 0; k < n; ++k) sigma(k) = k < n - nullity ? u(rng) * (rng() % 2 ? 1.0 : -1.0) : 0.0;
+  Dense b = q * sigma.asDiagonal() * q.transpose();
+  b = (0.5 * (b + b.transpose())).eval();
+  return {b, q};
+}
+
+// The SoA batch of the header; padding lanes get finite junk that must not matter.
+struct Batch {
+  int n;
+  std::size_t count, stride;
+  std::vector<double> B, sigma, V, z, defect;
+
+  Batch(const std::vector<Dense>& matrices, std::mt19937_64& rng)
+      : n(static_cast<int>(matrices.front().rows())), count(matrices.size()), stride(batch_stride(count)) {
+    const std::size_t nn = static_cast<std::size_t>(n) * n;
+    B.assign(nn * stride, 0.0);
+    std::uniform_real_distribution<double> u(-3.0, 3.0);
+    for (std::size_t l = 0; l < stride; ++l)
+      for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) B[(r * n + c) * stride + l] = l < count ? matrices[l](r, c) : u(rng);
+    sigma.assign(n * stride, kNaN);
+    V.assign(nn * stride, kNaN);
+    z.assign(n * stride, kNaN);
+    defect.assign(stride, kNaN);
+  }
+  void run(const Implementation& impl) {
+    impl.symmetric_svd(n, count, stride, B.data(), sigma.data(), V.data());
+    impl.null_vector(n, count, stride, B.data(), z.data(), defect.data());
+  }
+  double s(std::size_t l, int k) const { return sigma[k * stride + l]; }
+  Eigen::VectorXd v(std::size_t l, int k) const {
+    Eigen::VectorXd out(n);
+    for (int r = 0; r < n; ++r) out(r) = V[(k * n + r) * stride + l];
+    return out;
+  }
+  Eigen::VectorXd null(std::size_t l) const {
+    Eigen::VectorXd out(n);
+    for (int r = 0; r < n; ++r) out(r) = z[r * stride + l];
+    return out;
+  }
+  // The results contract covers lanes < count only: nothing is written to the padding lanes.
+  void expect_padding_untouched() const {
+    for (std::size_t l = count; l < stride; ++l) {
+      EXPECT_TRUE(std::isnan(defect[l])) << "lane " << l;
+      for (int k = 0; k < n; ++k) {
+        EXPECT_TRUE(std::isnan(s(l, k)) && std::isnan(z[k * stride + l])) << "lane " << l;
+        for (int r = 0; r < n; ++r) EXPECT_TRUE(std::isnan(V[(k * n + r) * stride + l])) << "lane " << l;
+      }
+    }
+  }
+};
+
+double abs_cos(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return std::abs(a.dot(b)) / (a.norm() * b.norm()); }
+
+std::string label(const Implementation& impl, int n, std::size_t count) {
+  return std::string(impl.name) + " n=" + std::to_string(n) + " count=" + std::to_string(count);
+}
+
+TEST(BatchImplementations, ScalarFirstAndAvx512OnThisCpu) {
+  const auto all = available_implementations();
+  ASSERT_FALSE(all.empty());
+  EXPECT_EQ(all.front()->name, "scalar");
+  for (const Implementation* impl : all) {
+    ASSERT_NE(impl->symmetric_svd, nullptr);
+    ASSERT_NE(impl->null_vector, nullptr);
+  }
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq") &&
+      __builtin_cpu_supports("avx512bw")) {
+    EXPECT_EQ(all.back()->name, "avx512");
+  } else if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
+    EXPECT_EQ(all.back()->name, "avx2");
+  }
+}
+
+TEST(BatchImplementations, SelectionByName) {
+  for (const Implementation* impl : available_implementations()) {
+    ASSERT_EQ(detail::implementation_named(impl->name), impl);
+    std::string warning;
+    EXPECT_EQ(&detail::select_implementation(std::string(impl->name).c_str(), warning), impl);
+    EXPECT_TRUE(warning.empty());
+  }
+  EXPECT_EQ(detail::implementation_named("neon"), nullptr);
+  EXPECT_EQ(detail::implementation_named(""), nullptr);
+  std::string warning;
+  EXPECT_EQ(&detail::select_implementation(nullptr, warning), &detail::best_implementation());
+  EXPECT_TRUE(warning.empty());
+  EXPECT_EQ(&detail::select_implementation("sse9", warning), &detail::best_implementation());
+  EXPECT_NE(warning.find("BEZINV_KERNEL=sse9"), std::string::npos) << warning;
+  EXPECT_EQ(warning.find('\n'), std::string::npos);
+  // Without BEZINV_KERNEL in the environment of this test run, the active one is the best.
+  if (std::getenv("BEZINV_KERNEL") == nullptr) {
+    EXPECT_EQ(&active_implementation(), &detail::best_implementation());
+  }
+}
+
+// Random symmetric matrices against Eigen::JacobiSVD, lane by lane, and the implementations
+// against each other.
+TEST(BatchSymmetricSvd, MatchesEigenJacobiSvdAndEachOther) {
+  std::mt19937_64 rng(20240611);
+  double worst_sigma = 0, worst_vector = 0, worst_between = 0;
+  for (int n = 1; n <= kMaxBatchSize; ++n) {
+    for (std::size_t count : kCounts) {
+      std::vector<Dense> matrices;
+      for (std::size_t l = 0; l < count; ++l) matrices.push_back(random_symmetric(n, rng));
+      std::vector<Batch> results;
+      for (const Implementation* impl : available_implementations()) {
+        SCOPED_TRACE(label(*impl, n, count));
+        std::mt19937_64 junk(n * 1000 + count);
+        Batch batch(matrices, junk);
+        batch.run(*impl);
+        batch.expect_padding_untouched();
+        for (std::size_t l = 0; l < count; ++l) {
+          const Eigen::JacobiSVD<Dense> svd(matrices[l], Eigen::ComputeFullV);
+          const auto& s = svd.singularValues();
+          for (int k = 0; k < n; ++k) {
+            const double err = std::abs(batch.s(l, k) - s(k)) / s(0);
+            worst_sigma = std::max(worst_sigma, err);
+            ASSERT_LE(err, kSigmaTolerance) << "lane " << l << " k " << k;
+            // Vectors are only determined up to sign, and only when separated from their neighbours.
+            const double gap = std::min(k > 0 ? s(k - 1) - s(k) : s(0), k + 1 < n ? s(k) - s(k + 1) : s(0));
+            if (gap < 1e-3 * s(0)) continue;
+            const double angle = 1 - abs_cos(batch.v(l, k), svd.matrixV().col(k));
+            worst_vector = std::max(worst_vector, angle);
+            ASSERT_LE(angle, 1e-12) << "lane " << l << " k " << k;
+            ASSERT_NEAR(batch.v(l, k).norm(), 1.0, 1e-14);
+          }
+        }
+        results.push_back(std::move(batch));
+      }
+      for (std::size_t i = 1; i < results.size(); ++i)
+        for (std::size_t l = 0; l < count; ++l)
+          for (int k = 0; k < n; ++k) {
+            const double err = std::abs(results[i].s(l, k) - results[0].s(l, k)) / results[0].s(l, 0);
+            worst_between = std::max(worst_between, err);
+            ASSERT_LE(err, kSigmaTolerance) << available_implementations()[i]->name << " n " << n << " lane " << l;
+          }
+    }
+  }
+  RecordProperty("worst_sigma_vs_eigen_rel", sci(worst_sigma));
+  RecordProperty("worst_vector_1_minus_cos", sci(worst_vector));
+  RecordProperty("worst_sigma_between_implementations", sci(worst_between));
+}
+
+// Rank n-1 and nullity 2 by construction; plus rank n-1 with a small gap sigma_{n-1} = 1e-6.
+TEST(BatchNullVector, RankDeficientByConstruction) {
+  std::mt19937_64 rng(7);
+  double worst_rank1_defect = 0, least_nullity2_defect = 1, least_regular_defect = 1;
+  for (int n = 1; n <= kMaxBatchSize; ++n) {
+    for (std::size_t count : {std::size_t{1}, std::size_t{5}, std::size_t{8}, std::size_t{17}}) {
+      std::vector<Constructed> rank1, nullity2, regular;
+      for (std::size_t l = 0; l < count; ++l) {
+        rank1.push_back(with_nullity(n, 1, rng));
+        if (n >= 2) nullity2.push_back(with_nullity(n, 2, rng));
+        regular.push_back(with_nullity(n, 0, rng));
+      }
+      auto matrices = [](const std::vector<Constructed>& c) {
+        std::vector<Dense> out;
+        for (const auto& m : c) out.push_back(m.b);
+        return out;
+      };
+      for (const Implementation* impl : available_implementations()) {
+        SCOPED_TRACE(label(*impl, n, count));
+        std::mt19937_64 junk(n);
+        Batch a(matrices(rank1), junk);
+        a.run(*impl);
+        a.expect_padding_untouched();
+        for (std::size_t l = 0; l < count; ++l) {
+          const Eigen::VectorXd expected = rank1[l].q.col(n - 1);
+          EXPECT_GE(abs_cos(a.null(l), expected), 1 - 1e-12) << "null_vector lane " << l;
+          EXPECT_NEAR(a.null(l).norm(), 1.0, 1e-14);
+          EXPECT_GE(abs_cos(a.v(l, n - 1), expected), 1 - 1e-12) << "svd lane " << l;
+          EXPECT_LE(a.s(l, n - 1), 64 * kEps * a.s(l, 0));
+          EXPECT_LE(a.defect[l], 1e-10) << "lane " << l;
+          worst_rank1_defect = std::max(worst_rank1_defect, a.defect[l]);
+        }
+        if (n >= 2) {
+          Batch b(matrices(nullity2), junk);
+          b.run(*impl);
+          for (std::size_t l = 0; l < count; ++l) {
+            EXPECT_GE(b.defect[l], 1e-3) << "nullity 2 must be flagged, lane " << l;
+            least_nullity2_defect = std::min(least_nullity2_defect, b.defect[l]);
+            // Whatever it is, z lies in the 2-D null space, and so do the SVD's last two vectors.
+            const Dense null_space = nullity2[l].q.rightCols(2);
+            EXPECT_GE((null_space.transpose() * b.null(l)).norm(), 1 - 1e-10) << "lane " << l;
+            for (int k : {n - 2, n - 1}) EXPECT_GE((null_space.transpose() * b.v(l, k)).norm(), 1 - 1e-12);
+          }
+        }
+        Batch c(matrices(regular), junk);
+        c.run(*impl);
+        for (std::size_t l = 0; l < count; ++l) {
+          EXPECT_GE(c.defect[l], 1e-3) << "non-singular must be flagged, lane " << l;
+          least_regular_defect = std::min(least_regular_defect, c.defect[l]);
+        }
+      }
+    }
+  }
+  RecordProperty("worst_rank1_defect", sci(worst_rank1_defect));
+  RecordProperty("least_nullity2_defect", sci(least_nullity2_defect));
+  RecordProperty("least_nonsingular_defect", sci(least_regular_defect));
+}
+
+// The smallest singular vector of a nearly singular matrix with sigma_{n-1} / sigma_1 = 1e-6,
+// against Eigen::JacobiSVD (the accuracy target of the contract).
+TEST(BatchSymmetricSvd, SmallestVectorWithSmallGap) {
+  std::mt19937_64 rng(99);
+  for (int n = 2; n <= kMaxBatchSize; ++n) {
+    std::vector<Dense> matrices;
+    for (std::size_t l = 0; l < 9; ++l) {
+      std::uniform_real_distribution<double> u(0.1, 1.0);
+      const Dense q = random_orthogonal(n, rng);
+      Eigen::VectorXd sigma(n);
+      for (int k = 0; k < n; ++k) sigma(k) = u(rng);
+      sigma(0) = 1.0;
+      sigma(n - 2) = 1e-6;
+      sigma(n - 1) = 1e-17;
+      const Dense b = q * sigma.asDiagonal() * q.transpose();
+      matrices.push_back(0.5 * (b + b.transpose()));
+    }
+    for (const Implementation* impl : available_implementations()) {
+      SCOPED_TRACE(label(*impl, n, matrices.size()));
+      std::mt19937_64 junk(n);
+      Batch batch(matrices, junk);
+      batch.run(*impl);
+      for (std::size_t l = 0; l < matrices.size(); ++l) {
+        const Eigen::JacobiSVD<Dense> svd(matrices[l], Eigen::ComputeFullV);
+        EXPECT_GE(abs_cos(batch.v(l, n - 1), svd.matrixV().col(n - 1)), 1 - 1e-12) << "lane " << l;
+        EXPECT_GE(abs_cos(batch.null(l), svd.matrixV().col(n - 1)), 1 - 1e-12) << "lane " << l;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bezinv::kernels
