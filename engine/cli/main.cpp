@@ -1,5 +1,5 @@
 // The `bezinv` command: argument parsing, then the data flow of README "How it works":
-// CURVES.json -> curves -> plans, POINTS.csv -> points, invert, OUT.csv.
+// CURVES.json -> curves -> plans, then POINTS (.csv/.npy) -> invert -> OUT (.csv/.npy) a chunk at a time.
 #include <array>
 #include <chrono>
 #include <charconv>
@@ -13,6 +13,8 @@
 #include <system_error>
 #include <vector>
 
+#include <unistd.h>  // isatty: the progress line is for a person at a terminal only
+
 #include <CLI/CLI.hpp>
 
 #include "bezinv/curve.hpp"
@@ -21,6 +23,7 @@
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
 #include "demo.hpp"
+#include "profile.hpp"
 
 // The project version from CMake when the build passes it; otherwise the one in CMakeLists.txt.
 #ifndef BEZINV_VERSION
@@ -40,6 +43,53 @@ struct InvertArguments {
   bool no_refine = false;
   int threads = 0;
   bool verbose = false;
+  bezinv::CurveSelection selection;
+  std::size_t chunk_points = bezinv::kDefaultChunkPoints;
+};
+
+// One self-overwriting line on stderr: points done, how far through the input, rate. Only when
+// stderr is a terminal (never in CI logs or pipes), only once the job has run a second, at most
+// ten times a second; wiped again at the end so what follows starts on a clean line.
+class ProgressLine {
+ public:
+  ProgressLine() : enabled_(::isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()) {}
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+  ~ProgressLine() {
+    if (drawn_) std::fputs("\r\033[K", stderr);
+  }
+
+  void update(const bezinv::ReadProgress& progress) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - start_).count();
+    if (seconds < 1.0 || (drawn_ && now - last_ < std::chrono::milliseconds(100))) return;
+    last_ = now;
+    drawn_ = true;
+    const double rate = static_cast<double>(progress.points) / seconds;
+    char line[160];
+    if (progress.points_total > 0) {
+      std::snprintf(line, sizeof line, "\rbezinv: %llu / %llu points (%.0f%%), %.2f M points/s\033[K",
+                    static_cast<unsigned long long>(progress.points),
+                    static_cast<unsigned long long>(progress.points_total),
+                    100.0 * static_cast<double>(progress.points) / static_cast<double>(progress.points_total), rate / 1e6);
+    } else if (progress.bytes_total > 0) {
+      std::snprintf(line, sizeof line, "\rbezinv: %llu points, %.0f%% of %.1f MB read, %.2f M points/s\033[K",
+                    static_cast<unsigned long long>(progress.points),
+                    100.0 * static_cast<double>(progress.bytes) / static_cast<double>(progress.bytes_total),
+                    static_cast<double>(progress.bytes_total) / 1e6, rate / 1e6);
+    } else {
+      std::snprintf(line, sizeof line, "\rbezinv: %llu points, %.2f M points/s\033[K",
+                    static_cast<unsigned long long>(progress.points), rate / 1e6);
+    }
+    std::fputs(line, stderr);
+    std::fflush(stderr);
+  }
+
+ private:
+  bool enabled_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_, last_;
 };
 
 // Fail before reading anything when OUT cannot be placed: a missing directory would otherwise only
@@ -51,17 +101,14 @@ void check_output_directory(const std::string& out_path) {
     throw bezinv::InputError(out_path + ": cannot write: directory " + directory.string() + " does not exist");
 }
 
-void print_summary(const InvertArguments& arguments, std::span<const bezinv::PointResult> results,
-                   double seconds) {
+void print_summary(const InvertArguments& arguments, const bezinv::StreamSummary& summary, double seconds) {
   using bezinv::Status;
   constexpr std::array statuses{Status::ok,        Status::outside_segment, Status::double_point,
                                 Status::off_curve, Status::invalid_input,   Status::failed};
-  std::array<std::size_t, statuses.size()> counts{};
-  for (const auto& result : results)
-    for (std::size_t s = 0; s < statuses.size(); ++s) counts[s] += result.status == statuses[s];
-  std::string line = "bezinv: " + std::to_string(results.size()) + " points in " + std::to_string(seconds) + " s:";
-  for (std::size_t s = 0; s < statuses.size(); ++s)
-    line += std::string(" ") + to_string(statuses[s]) + " " + std::to_string(counts[s]);
+  std::string line = "bezinv: " + std::to_string(summary.points) + " points in " + std::to_string(seconds) + " s:";
+  for (const Status status : statuses)
+    line += std::string(" ") + to_string(status) + " " +
+            std::to_string(summary.by_status[static_cast<std::size_t>(status)]);
   std::fprintf(stderr, "%s -> %s\n", line.c_str(), arguments.out_path.c_str());
 }
 
@@ -82,31 +129,24 @@ int run_invert(const InvertArguments& arguments) {
     }
   }
 
-  const std::vector<bezinv::PointRow> rows = bezinv::read_points_csv(arguments.points_path, curves);
-  std::vector<int> curve_of(rows.size());
-  std::vector<bezinv::Point> points(rows.size());
-  std::vector<bezinv::PointResult> results(rows.size());
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    curve_of[i] = rows[i].curve;
-    points[i] = rows[i].point;
-    if (rows[i].curve < 0) {
-      // invert() leaves rows with a negative curve as set here.
-      results[i].status = bezinv::Status::invalid_input;
-      results[i].reason = rows[i].reason;
-    }
-  }
-
   bezinv::InvertOptions options;
   options.relative_tolerance = arguments.relative_tolerance;
   options.refine = !arguments.no_refine;
   options.threads = arguments.threads;
-  bezinv::invert(plans, curve_of, points, results, options);
 
-  bezinv::write_results_csv(arguments.out_path, results);
+  const auto reader = bezinv::open_points(arguments.points_path, curves, arguments.selection);
+  const auto writer = bezinv::open_results(arguments.out_path, arguments.threads);
+  bezinv::StreamSummary summary;
+  {
+    ProgressLine progress;
+    summary = bezinv::invert_stream(*reader, *writer, plans, options, arguments.chunk_points,
+                                    [&](const bezinv::ReadProgress& p) { progress.update(p); });
+    writer->commit();
+  }
 
   if (arguments.verbose) {
     const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
-    print_summary(arguments, results, elapsed.count());
+    print_summary(arguments, summary, elapsed.count());
   }
   return 0;
 }
@@ -142,11 +182,22 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
 
   InvertArguments invert_arguments;
-  CLI::App* invert = app.add_subcommand("invert", "Invert every point of POINTS.csv on its curve, write OUT.csv");
+  CLI::App* invert = app.add_subcommand("invert", "Invert every point of POINTS on its curve, write OUT");
   invert->add_option("--curves", invert_arguments.curves_path, "Curves file (JSON)")->required();
-  invert->add_option("--points", invert_arguments.points_path, "Points file (CSV: curve,x,y)")->required();
-  invert->add_option("--out", invert_arguments.out_path, "Results file (CSV), one row per point, in order")
+  invert
+      ->add_option("--points", invert_arguments.points_path,
+                   "Points file: CSV (curve,x,y) or .npy (float64, shape (N, 2))")
       ->required();
+  invert
+      ->add_option("--out", invert_arguments.out_path,
+                   "Results file: CSV, or .npy (structured array), one row per point, in order")
+      ->required();
+  CLI::Option* curve = invert->add_option("--curve", invert_arguments.selection.curve,
+                                          ".npy points: the curve (id or 0-based index) of every point");
+  CLI::Option* curve_index =
+      invert->add_option("--curve-index", invert_arguments.selection.index_path,
+                         ".npy points: int32/int64 (N,) .npy of 0-based curve indices, one per point");
+  curve->excludes(curve_index);
   invert
       ->add_option("--tol", invert_arguments.relative_tolerance,
                    "On-curve tolerance relative to the control-point bounding-box diagonal")
@@ -160,6 +211,11 @@ int main(int argc, char** argv) {
       ->check(non_negative)
       ->capture_default_str();
   invert->add_flag("--verbose,-v", invert_arguments.verbose, "One-line summary on stderr");
+  invert
+      ->add_option("--chunk-points", invert_arguments.chunk_points,
+                   "Points read, inverted and written at a time (memory ~100 bytes per point)")
+      ->check(positive)
+      ->capture_default_str();
 
   std::size_t demo_points = 1000000;
   int demo_threads = 0;
@@ -168,6 +224,30 @@ int main(int argc, char** argv) {
   demo->add_option("--threads", demo_threads, "Worker threads (0: all cores)")
       ->check(non_negative)
       ->capture_default_str();
+
+  bezinv::cli::ProfileOptions profile_options;
+  std::string profile_kind = "rational_bezier";
+  CLI::App* profile = app.add_subcommand(
+      "profile", "Generate points on random curves, invert them in memory; report points/s per stage");
+  profile->add_option("--kind", profile_kind, "Curve kind")
+      ->check(CLI::IsMember({"bezier", "rational_bezier", "rational"}))
+      ->capture_default_str();
+  profile->add_option("--degree", profile_options.degree, "Curve degree")
+      ->check(CLI::Range(1, bezinv::kMaxDegree))
+      ->capture_default_str();
+  profile->add_option("--points", profile_options.points, "Number of points")->check(positive)->capture_default_str();
+  profile->add_option("--curves", profile_options.curves, "Distinct curves the points are spread over")
+      ->check(positive)
+      ->capture_default_str();
+  profile->add_option("--threads", profile_options.threads, "Worker threads (0: all cores)")
+      ->check(non_negative)
+      ->capture_default_str();
+  profile->add_option("--noise", profile_options.noise, "Move points off the curve by up to D x its diagonal")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  bool profile_no_refine = false;
+  profile->add_flag("--no-refine", profile_no_refine, "Algebraic t only (no Newton refinement)");
+  profile->add_flag("--json", profile_options.json, "One JSON object on stdout");
 
   try {
     app.parse(argc, argv);
@@ -178,6 +258,13 @@ int main(int argc, char** argv) {
   try {
     if (invert->parsed()) return run_invert(invert_arguments);
     if (demo->parsed()) return bezinv::cli::run_demo(demo_points, demo_threads);
+    if (profile->parsed()) {
+      profile_options.refine = !profile_no_refine;
+      profile_options.kind = profile_kind == "bezier"            ? bezinv::CurveKind::bezier
+                             : profile_kind == "rational"        ? bezinv::CurveKind::rational
+                                                                 : bezinv::CurveKind::rational_bezier;
+      return bezinv::cli::run_profile(profile_options);
+    }
   } catch (const bezinv::InputError& e) {
     std::fprintf(stderr, "bezinv: %s\n", e.what());
     return kExitInputError;

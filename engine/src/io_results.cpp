@@ -1,82 +1,45 @@
-// std::span<const PointResult> -> OUT.csv (format in bezinv/io.hpp).
-//
-// Written to a temporary file beside the target and renamed over it at the end: rename within one
-// directory is atomic on POSIX, so a reader (or a failed run) never sees half a file.
-#include <atomic>
-#include <cerrno>
+// PointResult chunks -> OUT.csv or OUT.npy (formats in bezinv/io.hpp), through a temporary file
+// that replaces the target only at commit (io_temporary_output.hpp).
+#include <algorithm>
+#include <bit>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
-#include <unistd.h>  // getpid: a temporary name no other process will pick
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "bezinv/io.hpp"
+#include "io_npy.hpp"
+#include "io_temporary_output.hpp"
 
 namespace bezinv {
 namespace {
 
+using detail::TemporaryOutput;
+
 constexpr std::string_view kHeader = "t,status,residual,t2,sigma_min,sigma_next,path,reason\n";
 
-// Output is handed to the file in blocks of about this size.
-constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
+// Rows formatted by one task: about 0.5 MB of text, enough to amortize the task, small enough
+// that a group of them in flight stays in the tens of MB.
+constexpr std::size_t kRowsPerBlock = 4096;
+constexpr std::size_t kBlocksPerGroup = 32;
 
-[[noreturn]] void fail_to_write(const std::string& path, int error) {
-  throw InputError(path + ": cannot write: " + std::strerror(error));
-}
-
-// The temporary file: removed again unless commit() renamed it over the target.
-class TemporaryOutput {
- public:
-  explicit TemporaryOutput(const std::string& target) : target_(target) {
-    static std::atomic<unsigned> counter{0};
-    // "x": fail if the name exists, so two writers (threads or processes) never share one file.
-    for (int attempt = 0; attempt < 100 && file_ == nullptr; ++attempt) {
-      name_ = target + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-      file_ = std::fopen(name_.c_str(), "wbx");
-      if (file_ == nullptr && errno != EEXIST) break;
-    }
-    if (file_ == nullptr) fail_to_write(target_, errno);
-  }
-  TemporaryOutput(const TemporaryOutput&) = delete;
-  TemporaryOutput& operator=(const TemporaryOutput&) = delete;
-  ~TemporaryOutput() {
-    if (file_ != nullptr) std::fclose(file_);
-    if (!committed_) std::remove(name_.c_str());
-  }
-
-  void write(std::string_view bytes) {
-    if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) fail_to_write(target_, errno);
-  }
-
-  void commit() {
-    std::FILE* file = file_;
-    file_ = nullptr;
-    // fclose flushes: a full disk shows up here, not earlier.
-    if (std::fclose(file) != 0) fail_to_write(target_, errno);
-    if (std::rename(name_.c_str(), target_.c_str()) != 0) fail_to_write(target_, errno);
-    committed_ = true;
-  }
-
- private:
-  std::string target_;
-  std::string name_;
-  std::FILE* file_ = nullptr;
-  bool committed_ = false;
-};
-
-// %.17g: enough digits that strtod gives back the same double. NaN (absent) is written "nan"
-// whatever its sign bit, so readers need to know one spelling.
+// Shortest text that reads back as the same double (std::to_chars without a precision), so
+// round-trip precision in fewer bytes than %.17g. NaN (absent) is written "nan" whatever its
+// sign bit, so readers need to know one spelling.
 void append_number(std::string& out, double value) {
   if (std::isnan(value)) {
     out += "nan";
     return;
   }
   char digits[32];
-  const auto [end, error] = std::to_chars(digits, digits + sizeof digits, value, std::chars_format::general, 17);
-  (void)error;  // 32 bytes hold any %.17g double ("-1.2345678901234567e-308" is 24)
+  const auto [end, error] = std::to_chars(digits, digits + sizeof digits, value);
+  (void)error;  // 32 bytes hold any shortest double ("-2.2250738585072014e-308" is 24)
   out.append(digits, end);
 }
 
@@ -97,37 +60,108 @@ void append_text_field(std::string& out, const char* text) {
   out += '"';
 }
 
-}  // namespace
+void append_row(std::string& out, const PointResult& result) {
+  append_number(out, result.t);
+  out += ',';
+  out += to_string(result.status);
+  out += ',';
+  append_number(out, result.residual);
+  out += ',';
+  append_number(out, result.t2);
+  out += ',';
+  append_number(out, result.sigma_min);
+  out += ',';
+  append_number(out, result.sigma_next);
+  out += ',';
+  out += to_string(result.path);
+  out += ',';
+  append_text_field(out, result.reason);
+  out += '\n';
+}
 
-void write_results_csv(const std::string& path, std::span<const PointResult> results) {
-  TemporaryOutput output(path);
-  std::string block;
-  block.reserve(kBlockBytes + 1024);
-  block += kHeader;
-  for (const PointResult& result : results) {
-    append_number(block, result.t);
-    block += ',';
-    block += to_string(result.status);
-    block += ',';
-    append_number(block, result.residual);
-    block += ',';
-    append_number(block, result.t2);
-    block += ',';
-    append_number(block, result.sigma_min);
-    block += ',';
-    append_number(block, result.sigma_next);
-    block += ',';
-    block += to_string(result.path);
-    block += ',';
-    append_text_field(block, result.reason);
-    block += '\n';
-    if (block.size() >= kBlockBytes) {
-      output.write(block);
-      block.clear();
+class CsvResultWriter final : public ResultWriter {
+ public:
+  CsvResultWriter(const std::string& path, int threads)
+      : output_(path), arena_(threads > 0 ? threads : tbb::task_arena::automatic), blocks_(kBlocksPerGroup) {
+    output_.write(kHeader);
+  }
+
+  // Blocks of rows are formatted in parallel, a group at a time, and written in order.
+  void write(std::span<const PointResult> results) override {
+    for (std::size_t group = 0; group < results.size(); group += kRowsPerBlock * kBlocksPerGroup) {
+      const std::span<const PointResult> rows = results.subspan(group, std::min(results.size() - group, kRowsPerBlock * kBlocksPerGroup));
+      const std::size_t blocks = (rows.size() + kRowsPerBlock - 1) / kRowsPerBlock;
+      const auto format = [&](std::size_t b) {
+        std::string& text = blocks_[b];
+        text.clear();
+        for (const PointResult& result : rows.subspan(b * kRowsPerBlock, std::min(kRowsPerBlock, rows.size() - b * kRowsPerBlock)))
+          append_row(text, result);
+      };
+      if (blocks == 1) format(0);
+      else arena_.execute([&] { tbb::parallel_for(std::size_t{0}, blocks, format); });
+      for (std::size_t b = 0; b < blocks; ++b) output_.write(blocks_[b]);
     }
   }
-  output.write(block);
-  output.commit();
+
+  void commit() override { output_.commit(); }
+
+ private:
+  TemporaryOutput output_;
+  tbb::task_arena arena_;
+  std::vector<std::string> blocks_;
+};
+
+// OUT.npy's record: packed (numpy's default for a list dtype), little-endian.
+constexpr std::string_view kResultDescr =
+    "[('t', '<f8'), ('residual', '<f8'), ('t2', '<f8'), ('sigma_min', '<f8'), ('sigma_next', '<f8'), "
+    "('status', '|u1'), ('path', '|u1')]";
+constexpr std::size_t kRecordBytes = 5 * 8 + 2;
+static_assert(std::endian::native == std::endian::little, "the .npy writer assumes a little-endian host");
+
+class NpyResultWriter final : public ResultWriter {
+ public:
+  explicit NpyResultWriter(const std::string& path) : output_(path) {
+    // The count is not known yet (a CSV input is not counted ahead): a placeholder of the same
+    // length, rewritten at commit.
+    output_.write(detail::npy_preamble(kResultDescr, 0));
+  }
+
+  void write(std::span<const PointResult> results) override {
+    records_.resize(results.size() * kRecordBytes);
+    char* record = records_.data();
+    for (const PointResult& result : results) {
+      const double numbers[5] = {result.t, result.residual, result.t2, result.sigma_min, result.sigma_next};
+      std::memcpy(record, numbers, sizeof numbers);
+      record[40] = static_cast<char>(result.status);
+      record[41] = static_cast<char>(result.path);
+      record += kRecordBytes;
+    }
+    output_.write(std::string_view(records_.data(), records_.size()));
+    rows_ += results.size();
+  }
+
+  void commit() override {
+    output_.rewrite(0, detail::npy_preamble(kResultDescr, rows_));
+    output_.commit();
+  }
+
+ private:
+  TemporaryOutput output_;
+  std::vector<char> records_;
+  std::uint64_t rows_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads) {
+  if (detail::has_npy_extension(path)) return std::make_unique<NpyResultWriter>(path);
+  return std::make_unique<CsvResultWriter>(path, threads);
+}
+
+void write_results_csv(const std::string& path, std::span<const PointResult> results) {
+  CsvResultWriter writer(path, 0);
+  writer.write(results);
+  writer.commit();
 }
 
 }  // namespace bezinv

@@ -18,6 +18,7 @@
 #error "BEZINV_CLI_PATH must name the bezinv binary (tests/CMakeLists.txt defines it)"
 #endif
 
+#include "support/run_bezinv.hpp"
 #include "support/scratch_directory.hpp"
 #include "support/split.hpp"
 
@@ -29,25 +30,9 @@ using bezinv::test_support::read_file;
 using bezinv::test_support::ScratchDirectory;
 using bezinv::test_support::split;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-// Runs bezinv with the arguments (already shell-quoted where needed), capturing stdout/stderr.
-Outcome run_bezinv(const ScratchDirectory& scratch, const std::string& arguments) {
-  const std::string out = scratch.path("stdout.txt"), err = scratch.path("stderr.txt");
-  const std::string command =
-      std::string("'") + BEZINV_CLI_PATH + "' " + arguments + " >'" + out + "' 2>'" + err + "'";
-  const int status = std::system(command.c_str());
-  Outcome run;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = read_file(out);
-  run.err = read_file(err);
-  return run;
-}
-
-std::string quoted(const std::string& path) { return "'" + path + "'"; }
+using bezinv::test_support::Outcome;
+using bezinv::test_support::quoted;
+using bezinv::test_support::run_bezinv;
 
 // ---- Independent truth: points from known parameters ----------------------------------------
 

@@ -5,7 +5,18 @@
 //                {"id": "b", "kind": "rational_bezier", "points": [[x,y], ...], "weights": [w0, ...]}
 //                {"id": "c", "kind": "rational", "x_num": [...], "x_den": [...], "y_num": [...], "y_den": [...]}
 //   POINTS.csv   header `curve,x,y`; curve is an id or a 0-based index into the list
+//   POINTS.npy   float64 '<f8', shape (N, 2), C order: x, y per row; the curve comes from a
+//                CurveSelection (one curve for all, or an int32/int64 (N,) .npy of curve indices)
 //   OUT.csv      header, then one row per input point, in input order
+//   OUT.npy      structured (N,) array: t, residual, t2, sigma_min, sigma_next '<f8', status, path 'u1'
+//                (the codes are the enum values of Status and Path in invert.hpp)
+// A path ending in ".npy" is a .npy file, anything else CSV. Files of any size stream through in
+// chunks (open_points -> invert_stream -> open_results), so memory does not grow with the input.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -36,13 +47,74 @@ struct PointRow {
   const char* reason = "";
 };
 
+// The whole of POINTS.csv at once (small files, tests): open_points read to the end.
 // Throws InputError for a file that cannot be used as a whole (unreadable, missing or wrong
 // header, a row with the wrong number of fields); per-row problems become rows with curve = -1.
 std::vector<PointRow> read_points_csv(const std::string& path, const std::vector<Curve>& curves);
 
-// Writes OUT.csv atomically (to a temporary file beside it, then renamed), so a failure leaves no
-// partial file. Columns: t,status,residual,t2,sigma_min,sigma_next,path,reason. Numbers at
-// round-trip precision (%.17g), `nan` when absent.
+// Where the points of a .npy file find their curve (a CSV names it in its `curve` column, and
+// giving either of these with a CSV is an InputError). Exactly one must be set for .npy points.
+struct CurveSelection {
+  std::string curve;        // `--curve`: an id, or a 0-based index, for every point
+  std::string index_path;   // `--curve-index`: int32 or int64 (N,) .npy, 0-based curve index per point
+};
+
+// How far a reader has got, for a progress display. Totals are 0 when unknown (a CSV's row count;
+// the size of a pipe).
+struct ReadProgress {
+  std::uint64_t points = 0, points_total = 0;
+  std::uint64_t bytes = 0, bytes_total = 0;
+};
+
+// Points in input order, a chunk at a time. Whole-file problems throw InputError when they are
+// met, which may be after many chunks (a malformed CSV row at line 5,000,000): the caller must
+// not have published anything by then (ResultWriter keeps its output temporary until commit).
+class PointReader {
+ public:
+  virtual ~PointReader() = default;
+  // Fills rows from the front; returns how many. Fewer than rows.size() only at the end; 0 after it.
+  virtual std::size_t read(std::span<PointRow> rows) = 0;
+  virtual ReadProgress progress() const = 0;
+};
+
+// POINTS.csv or POINTS.npy (by extension). Throws InputError for an unusable header at once.
+std::unique_ptr<PointReader> open_points(const std::string& path, const std::vector<Curve>& curves,
+                                         const CurveSelection& selection = {});
+
+// Results in input order, a chunk at a time, into a temporary file beside the target; commit()
+// renames it over the target (atomic within a directory). Destroyed without commit() (an
+// exception on the way), it removes the temporary and leaves the target as it was.
+// Failures throw InputError "<path>: cannot write: <reason>".
+class ResultWriter {
+ public:
+  virtual ~ResultWriter() = default;
+  virtual void write(std::span<const PointResult> results) = 0;
+  virtual void commit() = 0;
+};
+
+// OUT.csv or OUT.npy (by extension). CSV columns: t,status,residual,t2,sigma_min,sigma_next,path,
+// reason; numbers in the shortest form that reads back to the same double (std::to_chars, so
+// round-trip precision), `nan` when absent. `threads` formats CSV rows in parallel (0: all cores).
+// The .npy header is written with room for any row count and rewritten with the count at commit.
+std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads = 0);
+
+// OUT.csv at once (small results, tests): open_results, write, commit.
 void write_results_csv(const std::string& path, std::span<const PointResult> results);
+
+// Points per chunk of invert_stream: about 100 MB of rows and results in flight.
+constexpr std::size_t kDefaultChunkPoints = std::size_t{1} << 20;
+
+struct StreamSummary {
+  std::uint64_t points = 0;
+  std::array<std::uint64_t, 6> by_status{};  // indexed by Status
+};
+
+// read a chunk -> invert -> write its results, until the reader is done. Rows the reader rejected
+// become invalid_input with its reason. `on_progress` (optional) is called every 65536 points
+// inverted and at the end of every chunk, with `points` = points inverted so far (bytes: read so
+// far). Does not commit: the caller does when everything succeeded.
+StreamSummary invert_stream(PointReader& reader, ResultWriter& writer, std::span<const InversionPlan> plans,
+                            const InvertOptions& options, std::size_t chunk_points = kDefaultChunkPoints,
+                            const std::function<void(const ReadProgress&)>& on_progress = {});
 
 }  // namespace bezinv

@@ -1,0 +1,122 @@
+// `bezinv profile`: generate curves (datasets_gen) and points at known parameters, run the batch
+// pipeline in memory, report throughput per stage. Stage figures are points per second of work
+// in that stage summed over threads; the total is points per wall-clock second.
+#include "profile.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "bezinv/datasets/random_curve.hpp"
+#include "bezinv/datasets/random_numbers.hpp"
+#include "bezinv/invert.hpp"
+#include "bezinv/plan.hpp"
+
+namespace bezinv::cli {
+namespace {
+
+struct Workload {
+  std::vector<InversionPlan> plans;
+  std::vector<std::vector<Point>> points;   // per curve
+  std::vector<std::vector<double>> t_true;  // per curve
+};
+
+Workload generate(const ProfileOptions& options) {
+  std::mt19937_64 rng(options.seed);
+  Workload w;
+  const int curves = std::max(1, options.curves);
+  for (int c = 0; c < curves; ++c) {
+    const Curve curve = datasets::random_curve(options.kind, options.degree, rng, datasets::ControlPolygon::perturbed_arc);
+    w.plans.push_back(make_plan(curve));
+    const std::size_t count = options.points / curves + (static_cast<std::size_t>(c) < options.points % curves);
+    std::vector<double> t(count), angle(count), offset(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      t[i] = datasets::uniform(rng, 0.0, 1.0);
+      angle[i] = datasets::uniform(rng, 0.0, 2 * std::numbers::pi);
+      offset[i] = options.noise * datasets::uniform(rng, 0.0, 1.0) * w.plans.back().diagonal;
+    }
+    std::vector<Point> points(count);
+    // P(t) in double (Curve::point, de Casteljau): the profile measures speed; the accuracy
+    // figures it prints are a sanity check, the tests hold the accuracy guarantees.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 4096), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        const auto p = curve.point(t[i]);
+        points[i] = {p[0] + offset[i] * std::cos(angle[i]), p[1] + offset[i] * std::sin(angle[i])};
+      }
+    });
+    w.points.push_back(std::move(points));
+    w.t_true.push_back(std::move(t));
+  }
+  return w;
+}
+
+}  // namespace
+
+int run_profile(const ProfileOptions& options) {
+  if (options.degree < 1 || options.degree > kMaxDegree) {
+    std::fprintf(stderr, "bezinv profile: --degree must be in 1..%d\n", kMaxDegree);
+    return 2;
+  }
+  const Workload w = generate(options);
+  InvertOptions invert_options;
+  invert_options.refine = options.refine;
+  invert_options.threads = options.threads;
+
+  std::vector<std::vector<PointResult>> results(w.plans.size());
+  for (std::size_t c = 0; c < w.plans.size(); ++c) results[c].resize(w.points[c].size());
+  StageSeconds stages;
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t c = 0; c < w.plans.size(); ++c) invert(w.plans[c], w.points[c], results[c], invert_options, &stages);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::size_t total = 0, ok = 0;
+  double max_dt = 0;
+  for (std::size_t c = 0; c < w.plans.size(); ++c)
+    for (std::size_t i = 0; i < results[c].size(); ++i, ++total) {
+      const PointResult& r = results[c][i];
+      ok += r.status == Status::ok;
+      if (r.status == Status::ok) max_dt = std::max(max_dt, std::abs(r.t - w.t_true[c][i]));
+    }
+  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  const double pps = wall > 0 ? static_cast<double>(total) / wall : 0.0;
+  auto rate = [&](double seconds) { return seconds > 0 ? static_cast<double>(total) / seconds : 0.0; };
+  const std::string_view kernel = active_kernel_name();
+
+  if (options.json) {
+    std::printf(
+        "{\"points_per_second\": %.6g, \"degree\": %d, \"threads\": %d, \"kernel\": \"%.*s\", \"kind\": \"%s\", "
+        "\"points\": %zu, \"curves\": %zu, \"noise\": %g, \"refine\": %s, \"seconds\": %.6g, "
+        "\"stages_points_per_second\": {\"form_b\": %.6g, \"kernel\": %.6g, \"read_out\": %.6g, \"refine\": %.6g, "
+        "\"decide\": %.6g}, \"ok\": %zu, \"max_abs_dt_ok\": %.3g}\n",
+        pps, options.degree, threads, static_cast<int>(kernel.size()), kernel.data(), to_string(options.kind), total,
+        w.plans.size(), options.noise, options.refine ? "true" : "false", wall, rate(stages.form_b),
+        rate(stages.kernel), rate(stages.read_out), rate(stages.refine), rate(stages.decide), ok, max_dt);
+    return 0;
+  }
+  std::printf("bezinv profile: %zu points on %zu %s curves of degree %d, noise %g, refine %s, threads %d, kernel %.*s\n\n",
+              total, w.plans.size(), to_string(options.kind), options.degree, options.noise,
+              options.refine ? "on" : "off", threads, static_cast<int>(kernel.size()), kernel.data());
+  std::printf("%-34s %14s %10s\n", "stage", "points/s", "share");
+  const double work = stages.form_b + stages.kernel + stages.read_out + stages.refine + stages.decide;
+  auto line = [&](const char* name, double seconds) {
+    std::printf("%-34s %14.4g %9.1f%%\n", name, rate(seconds), work > 0 ? 100 * seconds / work : 0.0);
+  };
+  line("form B", stages.form_b);
+  line("kernel (SVD)", stages.kernel);
+  line("read-out", stages.read_out);
+  line("refine + residual", stages.refine);
+  line("decide (status, rare paths)", stages.decide);
+  std::printf("%-34s %14.4g   (wall clock, %.3f s)\n\n", "total", pps, wall);
+  std::printf("ok %zu of %zu; max |t - t_true| over ok rows %.3g\n", ok, total, max_dt);
+  return 0;
+}
+
+}  // namespace bezinv::cli

@@ -1,0 +1,24 @@
+#pragma once
+// `bezinv profile`: throughput of the in-memory pipeline on generated data, stage by stage.
+#include <cstddef>
+
+#include "bezinv/curve.hpp"
+
+namespace bezinv::cli {
+
+struct ProfileOptions {
+  CurveKind kind = CurveKind::rational_bezier;
+  int degree = 3;
+  std::size_t points = 1'000'000;
+  int curves = 16;        // distinct random curves the points are spread over (not cache-hot)
+  int threads = 0;        // 0 = all cores
+  double noise = 0.0;     // points moved off the curve by up to noise x the curve's diagonal
+  bool refine = true;
+  bool json = false;
+  unsigned long long seed = 20261122;
+};
+
+// Prints points/s per stage and in total (one JSON object with --json). Returns the exit code.
+int run_profile(const ProfileOptions& options);
+
+}  // namespace bezinv::cli

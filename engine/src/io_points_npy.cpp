@@ -1,0 +1,195 @@
+// POINTS.npy (+ the curve of every point: --curve or a --curve-index .npy) -> PointRow chunks.
+//
+// The arrays are read a chunk at a time straight into place (fread of raw little-endian doubles),
+// so a .npy input costs no parsing at all. Everything the header promises is checked before the
+// first chunk: dtype, order, shape, the data length against the file size, and the index array's
+// length against the points'.
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "bezinv/io.hpp"
+#include "io_npy.hpp"
+#include "io_point_readers.hpp"
+
+namespace bezinv {
+namespace {
+
+using namespace detail;
+
+// The arrays are copied byte for byte: the host must store doubles and integers as '<' does.
+static_assert(std::endian::native == std::endian::little, "the .npy readers assume a little-endian host");
+
+[[noreturn]] void fail_header(const std::string& path, const std::string& problem) {
+  throw InputError(path + ": header: " + problem);
+}
+
+// An open .npy file, its header read and the file positioned at the data.
+class NpyFile {
+ public:
+  explicit NpyFile(const std::string& path) : path_(path) {
+    file_ = std::fopen(path.c_str(), "rb");
+    if (file_ == nullptr) throw InputError(path + ": cannot read: " + std::strerror(errno));
+    try {
+      header_ = read_npy_header(file_, path);
+    } catch (...) {
+      std::fclose(file_);
+      throw;
+    }
+  }
+  ~NpyFile() { std::fclose(file_); }
+  NpyFile(const NpyFile&) = delete;
+  NpyFile& operator=(const NpyFile&) = delete;
+
+  const NpyHeader& header() const { return header_; }
+  std::FILE* file() const { return file_; }
+  const std::string& path() const { return path_; }
+
+  // The file holds exactly `bytes` of data after the header (checked when the size is known: a
+  // regular file; a pipe is checked as it is read).
+  void expect_data_bytes(std::uint64_t bytes) const {
+    std::error_code no_size;
+    if (!std::filesystem::is_regular_file(path_, no_size)) return;
+    const std::uintmax_t size = std::filesystem::file_size(path_, no_size);
+    if (no_size) return;
+    const std::uint64_t found = size >= header_.data_offset ? size - header_.data_offset : 0;
+    if (found < bytes)
+      throw InputError(path_ + ": data: truncated: shape " + shape_text(header_.shape) + " needs " +
+                       std::to_string(bytes) + " bytes after the header, found " + std::to_string(found));
+    if (found > bytes)
+      throw InputError(path_ + ": data: " + std::to_string(found - bytes) + " bytes after the end of the " +
+                       shape_text(header_.shape) + " array");
+  }
+
+ private:
+  std::string path_;
+  std::FILE* file_ = nullptr;
+  NpyHeader header_;
+};
+
+// The curve of --curve: an id first, then a 0-based index (as in POINTS.csv).
+int selected_curve(const std::string& path, const std::vector<Curve>& curves, const std::string& selection) {
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    if (curves[i].id == selection) return static_cast<int>(i);
+  const bool digits = std::all_of(selection.begin(), selection.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (digits && selection.size() < 10) {
+    const std::size_t index = std::stoul(selection);
+    if (index < curves.size()) return static_cast<int>(index);
+  }
+  throw InputError(path + ": --curve '" + selection + "': no curve has this id, nor is it an index below " +
+                   std::to_string(curves.size()));
+}
+
+class NpyPointReader final : public PointReader {
+ public:
+  NpyPointReader(const std::string& path, const std::vector<Curve>& curves, const CurveSelection& selection)
+      : points_(path), curve_count_(curves.size()) {
+    const NpyHeader& header = points_.header();
+    if (header.descr != "'<f8'") fail_header(path, "dtype " + header.descr + " is not '<f8' (float64)");
+    if (header.fortran_order) fail_header(path, "fortran_order is True; only C order is read");
+    if (header.shape.size() != 2 || header.shape[1] != 2)
+      fail_header(path, "shape " + shape_text(header.shape) + " is not (N, 2)");
+    total_ = header.shape[0];
+    points_.expect_data_bytes(total_ * 16);
+    progress_.points_total = total_;
+    progress_.bytes_total = header.data_offset + total_ * 16;
+
+    if (!selection.curve.empty() && !selection.index_path.empty())
+      throw InputError(path + ": give --curve or --curve-index, not both");
+    if (!selection.curve.empty()) {
+      curve_ = selected_curve(path, curves, selection.curve);
+    } else if (!selection.index_path.empty()) {
+      indices_ = std::make_unique<NpyFile>(selection.index_path);
+      const NpyHeader& index_header = indices_->header();
+      const std::string& index_path = selection.index_path;
+      if (index_header.descr == "'<i4'") index_bytes_ = 4;
+      else if (index_header.descr == "'<i8'") index_bytes_ = 8;
+      else fail_header(index_path, "dtype " + index_header.descr + " is not '<i4' or '<i8' (int32, int64)");
+      // A 1-D array is the same in either order.
+      if (index_header.shape.size() != 1) fail_header(index_path, "shape " + shape_text(index_header.shape) + " is not (N,)");
+      if (index_header.shape[0] != total_)
+        fail_header(index_path, "shape " + shape_text(index_header.shape) + " does not match the " +
+                                    std::to_string(total_) + " points of " + path);
+      indices_->expect_data_bytes(total_ * index_bytes_);
+    } else {
+      throw InputError(path + ": a .npy of points needs --curve ID or --curve-index FILE.npy to name the curves");
+    }
+  }
+
+  std::size_t read(std::span<PointRow> rows) override {
+    const std::size_t count = static_cast<std::size_t>(std::min<std::uint64_t>(rows.size(), total_ - progress_.points));
+    if (count == 0) return 0;
+    coordinates_.resize(2 * count);
+    read_npy_data(points_.file(), points_.path(), coordinates_.data(), coordinates_.size() * sizeof(double));
+    if (indices_) {
+      index_buffer_.resize(count * index_bytes_);
+      read_npy_data(indices_->file(), indices_->path(), index_buffer_.data(), index_buffer_.size());
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      PointRow& row = rows[i];
+      row.point = {coordinates_[2 * i], coordinates_[2 * i + 1]};
+      row.reason = "";
+      row.curve = indices_ ? curve_at(i, row.reason) : curve_;
+      if (row.curve >= 0 && !std::isfinite(row.point.x)) row.reason = kXNotFinite;
+      else if (row.curve >= 0 && !std::isfinite(row.point.y)) row.reason = kYNotFinite;
+      if (*row.reason != '\0') row.curve = -1;
+    }
+    progress_.points += count;
+    progress_.bytes = points_.header().data_offset + progress_.points * 16;
+    return count;
+  }
+
+  ReadProgress progress() const override { return progress_; }
+
+ private:
+  int curve_at(std::size_t i, const char*& reason) const {
+    std::int64_t index = 0;
+    if (index_bytes_ == 4) {
+      std::int32_t narrow = 0;
+      std::memcpy(&narrow, index_buffer_.data() + 4 * i, 4);
+      index = narrow;
+    } else {
+      std::memcpy(&index, index_buffer_.data() + 8 * i, 8);
+    }
+    if (index < 0) {
+      reason = kNegativeCurveIndex;
+      return -1;
+    }
+    if (static_cast<std::uint64_t>(index) >= curve_count_) {
+      reason = kCurveIndexPastEnd;
+      return -1;
+    }
+    return static_cast<int>(index);
+  }
+
+  NpyFile points_;
+  std::size_t curve_count_;
+  std::uint64_t total_ = 0;
+  int curve_ = -1;                    // --curve
+  std::unique_ptr<NpyFile> indices_;  // --curve-index
+  std::size_t index_bytes_ = 0;
+  std::vector<double> coordinates_;
+  std::vector<unsigned char> index_buffer_;
+  ReadProgress progress_;
+};
+
+}  // namespace
+
+namespace detail {
+
+std::unique_ptr<PointReader> open_points_npy(const std::string& path, const std::vector<Curve>& curves,
+                                             const CurveSelection& selection) {
+  return std::make_unique<NpyPointReader>(path, curves, selection);
+}
+
+}  // namespace detail
+}  // namespace bezinv

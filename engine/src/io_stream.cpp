@@ -1,0 +1,53 @@
+// invert_stream: reader -> invert -> writer, one chunk at a time (bezinv/io.hpp). Memory is the
+// chunk's rows, points and results, whatever the size of the input.
+#include <algorithm>
+#include <vector>
+
+#include "bezinv/io.hpp"
+
+namespace bezinv {
+namespace {
+
+constexpr std::size_t kProgressSlice = std::size_t{1} << 16;
+
+}  // namespace
+
+StreamSummary invert_stream(PointReader& reader, ResultWriter& writer, std::span<const InversionPlan> plans,
+                            const InvertOptions& options, std::size_t chunk_points,
+                            const std::function<void(const ReadProgress&)>& on_progress) {
+  chunk_points = std::max<std::size_t>(chunk_points, 1);
+  std::vector<PointRow> rows(chunk_points);
+  std::vector<int> curve_of(chunk_points);
+  std::vector<Point> points(chunk_points);
+  std::vector<PointResult> results(chunk_points);
+  StreamSummary summary;
+  while (const std::size_t count = reader.read(rows)) {
+    for (std::size_t i = 0; i < count; ++i) {
+      curve_of[i] = rows[i].curve;
+      points[i] = rows[i].point;
+      results[i] = PointResult{};
+      if (rows[i].curve < 0) {
+        // invert() leaves rows with a negative curve as set here.
+        results[i].status = Status::invalid_input;
+        results[i].reason = rows[i].reason;
+      }
+    }
+    // Inverted in slices so the progress callback hears more often than once a chunk (a chunk of
+    // a million points can take seconds); a slice is still thousands of batches for the threads.
+    ReadProgress progress = reader.progress();
+    for (std::size_t begin = 0; begin < count; begin += kProgressSlice) {
+      const std::size_t size = std::min(kProgressSlice, count - begin);
+      invert(plans, std::span<const int>(curve_of).subspan(begin, size),
+             std::span<const Point>(points).subspan(begin, size), std::span(results).subspan(begin, size), options);
+      progress.points = summary.points + begin + size;
+      if (on_progress) on_progress(progress);
+    }
+    const std::span<const PointResult> answered = std::span(results).first(count);
+    for (const PointResult& result : answered) ++summary.by_status[static_cast<std::size_t>(result.status)];
+    summary.points += count;
+    writer.write(answered);
+  }
+  return summary;
+}
+
+}  // namespace bezinv

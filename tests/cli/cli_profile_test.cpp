@@ -1,0 +1,48 @@
+// `bezinv profile` end to end: it generates points at known parameters on random curves, so on
+// exact (noise-free) points every row must come back ok with t at rounding level of t_true; the
+// JSON object must carry the fields the issue names.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/run_bezinv.hpp"
+#include "support/scratch_directory.hpp"
+
+namespace {
+
+using bezinv::test_support::run_bezinv;
+using bezinv::test_support::ScratchDirectory;
+
+TEST(CliProfile, JsonReportsThroughputAndEveryOnCurvePointOk) {
+  ScratchDirectory scratch{"bezinv-profile-test-"};
+  for (const char* kind : {"bezier", "rational_bezier", "rational"}) {
+    for (int degree : {1, 3, 8, 20}) {
+      const auto run = run_bezinv(scratch, std::string("profile --kind ") + kind + " --degree " +
+                                               std::to_string(degree) + " --points 3000 --threads 2 --json");
+      ASSERT_EQ(run.exit_code, 0) << kind << " " << degree << ": " << run.err;
+      const auto report = nlohmann::json::parse(run.out);
+      EXPECT_GT(report.at("points_per_second").get<double>(), 0.0);
+      EXPECT_EQ(report.at("degree").get<int>(), degree);
+      EXPECT_EQ(report.at("threads").get<int>(), 2);
+      EXPECT_FALSE(report.at("kernel").get<std::string>().empty());
+      EXPECT_EQ(report.at("points").get<int>(), 3000);
+      // Exact points (P(t) in double): all ok. The t error bound is generous (rounding of P(t) is
+      // ~1e-16 of the curve size; a parameter is off by that over the speed |P'|, which on these
+      // arcs stays above 1e-3 of the size) and still fails on any wrong branch or stalled Newton.
+      EXPECT_EQ(report.at("ok").get<int>(), 3000) << kind << " degree " << degree;
+      EXPECT_LE(report.at("max_abs_dt_ok").get<double>(), 1e-10) << kind << " degree " << degree;
+      for (const char* stage : {"form_b", "kernel", "read_out", "refine", "decide"})
+        EXPECT_GT(report.at("stages_points_per_second").at(stage).get<double>(), 0.0) << stage;
+    }
+  }
+}
+
+TEST(CliProfile, RefusesADegreeOutOfRange) {
+  ScratchDirectory scratch{"bezinv-profile-test-"};
+  EXPECT_NE(run_bezinv(scratch, "profile --degree 0").exit_code, 0);
+  EXPECT_NE(run_bezinv(scratch, "profile --degree 99").exit_code, 0);
+  EXPECT_NE(run_bezinv(scratch, "profile --kind spline").exit_code, 0);
+}
+
+}  // namespace
