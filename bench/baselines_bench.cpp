@@ -1,0 +1,326 @@
+// Points per second: bezinv against what a user would otherwise call one point at a time,
+//   - OpenCASCADE: Geom2dAPI_ProjectPointOnCurve on a Geom2d_BezierCurve (poles + weights), the
+//     parameter of the nearest extremum (LowerDistanceParameter);
+//   - SISL: s1953 (all closest points between a curve and a point) on the same curve written as a
+//     rational B-spline with Bezier knots, the candidate nearest to the point;
+// and bezinv's batched `invert` (refined, one thread) on the very same points, so the ratios come
+// from one run. Per degree: 64 random rational Bezier curves x 1024 isolated on-curve points at
+// known t (datasets_gen), cycled so nothing is cache-hot (one iteration = one curve's 1024 points).
+//
+// Each benchmark also reports, from a separate untimed pass over all 64 x 1024 points,
+//   agree      the fraction of points whose parameter is within kAgreement of the known t,
+//   median_dt  the median |t - t_known|,
+//   no_answer  the fraction of points for which the library returned no parameter at all.
+// Which libraries are compiled in is decided by bench/CMakeLists.txt (BEZINV_HAVE_OCCT,
+// BEZINV_HAVE_SISL); the bezinv benchmark is always there.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "bezinv/datasets/curve_sampling.hpp"
+#include "bezinv/datasets/on_curve_points.hpp"
+#include "bezinv/datasets/random_curve.hpp"
+#include "bezinv/invert.hpp"
+#include "bezinv/plan.hpp"
+
+#ifdef BEZINV_HAVE_OCCT
+#include <Geom2dAPI_ProjectPointOnCurve.hxx>
+#include <Geom2d_BezierCurve.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt2d.hxx>
+#include <gp_Pnt2d.hxx>
+#endif
+
+#ifdef BEZINV_HAVE_SISL
+#include <sisl.h>
+#include <sys/resource.h>
+#endif
+
+namespace {
+
+using namespace bezinv;
+
+constexpr int kCurves = 64;
+constexpr int kPointsPerCurve = 1024;
+
+// A parameter "agrees" with the known one within this: far above what any of the three can reach
+// on these curves (bezinv's refined t is within ~1e-15), far below what a wrong extremum gives.
+constexpr double kAgreement = 1e-7;
+
+// SISL's geometric resolution for s1953 (the brief's ~1e-9; the curves are of unit size).
+constexpr double kSislGeometricResolution = 1e-9;
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+
+struct Workload {
+  std::vector<Curve> curves;
+  std::vector<std::vector<Point>> points;  // kPointsPerCurve per curve
+  std::vector<std::vector<double>> t;      // their known parameters, uniform in [0,1]
+};
+
+// Random rational Bezier curves on perturbed arcs (the same family as invert_bench.cpp) and
+// isolated points on them (segment_points: no other branch within 1e-4 of the diagonal, so the
+// nearest point of the curve - what OCCT and SISL return - is the known one). A curve that cannot
+// give kPointsPerCurve isolated points is replaced by another draw.
+const Workload& workload(int degree) {
+  static std::map<int, Workload> cache;
+  auto [it, inserted] = cache.try_emplace(degree);
+  Workload& w = it->second;
+  if (inserted) {
+    std::mt19937_64 rng(7000 + degree);
+    while (static_cast<int>(w.curves.size()) < kCurves) {
+      Curve curve = datasets::random_curve(CurveKind::rational_bezier, degree, rng,
+                                           datasets::ControlPolygon::perturbed_arc);
+      const datasets::CurveSampling sampling(curve);
+      const std::vector<datasets::KnownPoint> known = datasets::segment_points(sampling, kPointsPerCurve, rng);
+      if (static_cast<int>(known.size()) < kPointsPerCurve) continue;
+      std::vector<Point> points;
+      std::vector<double> t;
+      for (const datasets::KnownPoint& k : known) {
+        points.push_back(k.point);
+        t.push_back(k.t);
+      }
+      w.curves.push_back(std::move(curve));
+      w.points.push_back(std::move(points));
+      w.t.push_back(std::move(t));
+    }
+  }
+  return w;
+}
+
+struct Agreement {
+  double agree = 0, median_dt = 0, no_answer = 0;
+};
+
+// The untimed check: parameter(c, k) for every point of every curve against the known t.
+Agreement measure_agreement(const Workload& w, const std::function<double(int, int)>& parameter) {
+  std::vector<double> dt;
+  int agreeing = 0, missing = 0;
+  for (int c = 0; c < kCurves; ++c)
+    for (int k = 0; k < kPointsPerCurve; ++k) {
+      const double t = parameter(c, k);
+      if (std::isnan(t)) {
+        ++missing;
+        dt.push_back(std::numeric_limits<double>::infinity());
+        continue;
+      }
+      dt.push_back(std::abs(t - w.t[c][k]));
+      if (dt.back() <= kAgreement) ++agreeing;
+    }
+  std::nth_element(dt.begin(), dt.begin() + dt.size() / 2, dt.end());
+  const double total = static_cast<double>(dt.size());
+  return {agreeing / total, dt[dt.size() / 2], missing / total};
+}
+
+// Google Benchmark calls a benchmark function several times while it sizes the run: the check is
+// made once per (library, degree).
+void report_agreement(benchmark::State& state, const std::string& library,
+                      const std::function<Agreement()>& measure) {
+  static std::map<std::pair<std::string, int>, Agreement> cache;
+  const auto key = std::make_pair(library, static_cast<int>(state.range(0)));
+  auto it = cache.find(key);
+  if (it == cache.end()) it = cache.emplace(key, measure()).first;
+  state.counters["agree"] = it->second.agree;
+  state.counters["median_dt"] = it->second.median_dt;
+  state.counters["no_answer"] = it->second.no_answer;
+}
+
+// ---- bezinv ----------------------------------------------------------------------------------------
+
+const std::vector<InversionPlan>& plans(int degree) {
+  static std::map<int, std::vector<InversionPlan>> cache;
+  auto [it, inserted] = cache.try_emplace(degree);
+  if (inserted)
+    for (const Curve& curve : workload(degree).curves) it->second.push_back(make_plan(curve));
+  return it->second;
+}
+
+void BM_Bezinv_refined(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Workload& w = workload(n);
+  const std::vector<InversionPlan>& p = plans(n);
+  const InvertOptions options{.threads = 1};
+  std::vector<PointResult> results(kPointsPerCurve);
+  int c = 0;
+  for (auto _ : state) {
+    invert(p[c], w.points[c], results, options);
+    benchmark::DoNotOptimize(results.data());
+    benchmark::ClobberMemory();
+    c = (c + 1) % kCurves;
+  }
+  state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
+  report_agreement(state, "bezinv", [&] {
+    std::vector<std::vector<double>> t(kCurves);
+    for (int curve = 0; curve < kCurves; ++curve) {
+      invert(p[curve], w.points[curve], results, options);
+      for (const PointResult& r : results) t[curve].push_back(r.t);
+    }
+    return measure_agreement(w, [&](int curve, int k) { return t[curve][k]; });
+  });
+}
+
+// ---- OpenCASCADE -----------------------------------------------------------------------------------
+
+#ifdef BEZINV_HAVE_OCCT
+
+// Poles a_i = num_i / w_i (Curve stores rational_bezier as w_i a_i over w_i) and weights w_i.
+Handle(Geom2d_Curve) occt_curve(const Curve& curve) {
+  const int n = curve.degree();
+  TColgp_Array1OfPnt2d poles(1, n + 1);
+  TColStd_Array1OfReal weights(1, n + 1);
+  for (int i = 0; i <= n; ++i) {
+    poles.SetValue(i + 1, gp_Pnt2d(curve.x_num[i] / curve.x_den[i], curve.y_num[i] / curve.y_den[i]));
+    weights.SetValue(i + 1, curve.x_den[i]);
+  }
+  return new Geom2d_BezierCurve(poles, weights);
+}
+
+// What a user writes per point. LowerDistanceParameter throws when there is no extremum.
+double occt_parameter(const Handle(Geom2d_Curve)& curve, Point point) {
+  const Geom2dAPI_ProjectPointOnCurve projection(gp_Pnt2d(point.x, point.y), curve);
+  return projection.NbPoints() > 0 ? projection.LowerDistanceParameter() : kNan;
+}
+
+const std::vector<Handle(Geom2d_Curve)>& occt_curves(int degree) {
+  static std::map<int, std::vector<Handle(Geom2d_Curve)>> cache;
+  auto [it, inserted] = cache.try_emplace(degree);
+  if (inserted)
+    for (const Curve& curve : workload(degree).curves) it->second.push_back(occt_curve(curve));
+  return it->second;
+}
+
+void BM_OCCT_ProjectPointOnCurve(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Workload& w = workload(n);
+  const std::vector<Handle(Geom2d_Curve)>& curves = occt_curves(n);
+  std::vector<double> t(kPointsPerCurve);
+  int c = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < kPointsPerCurve; ++k) t[k] = occt_parameter(curves[c], w.points[c][k]);
+    benchmark::DoNotOptimize(t.data());
+    benchmark::ClobberMemory();
+    c = (c + 1) % kCurves;
+  }
+  state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
+  report_agreement(state, "occt", [&] {
+    return measure_agreement(w, [&](int curve, int k) { return occt_parameter(curves[curve], w.points[curve][k]); });
+  });
+}
+
+#endif  // BEZINV_HAVE_OCCT
+
+// ---- SISL ------------------------------------------------------------------------------------------
+
+#ifdef BEZINV_HAVE_SISL
+
+struct SislCurveDeleter {
+  void operator()(SISLCurve* curve) const { freeCurve(curve); }
+};
+using SislCurve = std::unique_ptr<SISLCurve, SislCurveDeleter>;
+
+// A Bezier curve of degree n is the B-spline of order n+1 on the knots (0^{n+1}, 1^{n+1}); kind 2
+// (rational B-spline) takes the coefficients in homogeneous form (w a_x, w a_y, w), which is how
+// Curve stores a rational_bezier (x_num, y_num, x_den). newCurve copies the arrays (icopy = 1).
+SislCurve sisl_curve(const Curve& curve) {
+  const int n = curve.degree();
+  std::vector<double> knots(2 * (n + 1), 0.0);
+  std::fill(knots.begin() + n + 1, knots.end(), 1.0);
+  std::vector<double> coefficients;
+  for (int i = 0; i <= n; ++i) coefficients.insert(coefficients.end(), {curve.x_num[i], curve.y_num[i], curve.x_den[i]});
+  return SislCurve(newCurve(n + 1, n + 1, knots.data(), coefficients.data(), 2, 2, 1));
+}
+
+// s1953 returns every parameter where the distance is locally closest (and curve pieces, for a
+// curve that runs along a circle around the point): the nearest of them, measured with s1221.
+double sisl_parameter(SISLCurve* curve, Point point) {
+  double p[2] = {point.x, point.y};
+  int count = 0, pieces = 0, status = 0;
+  double* parameters = nullptr;
+  SISLIntcurve** intersection_curves = nullptr;
+  s1953(curve, p, 2, 0.0, kSislGeometricResolution, &count, &parameters, &pieces, &intersection_curves, &status);
+  double best = kNan;
+  if (status >= 0 && count == 1) {
+    best = parameters[0];
+  } else if (status >= 0) {
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < count; ++i) {
+      double value[2];
+      int left = 0, evaluation_status = 0;
+      s1221(curve, 0, parameters[i], &left, value, &evaluation_status);
+      const double distance = std::hypot(value[0] - point.x, value[1] - point.y);
+      if (evaluation_status >= 0 && distance < best_distance) best_distance = distance, best = parameters[i];
+    }
+  }
+  std::free(parameters);
+  if (intersection_curves != nullptr) freeIntcrvlist(intersection_curves, pieces);
+  return best;
+}
+
+const std::vector<SislCurve>& sisl_curves(int degree) {
+  static std::map<int, std::vector<SislCurve>> cache;
+  auto [it, inserted] = cache.try_emplace(degree);
+  if (inserted)
+    for (const Curve& curve : workload(degree).curves) it->second.push_back(sisl_curve(curve));
+  return it->second;
+}
+
+// s1953 subdivides recursively (s1162 calls itself); on some points of the degree-20 curves it
+// goes ~17,000 frames deep, past the default 8 MiB stack (a segfault, not an error status). With
+// more stack it returns. scripts/bench.sh runs this binary under `ulimit -s unlimited`.
+bool stack_is_large() {
+  rlimit limit{};
+  return getrlimit(RLIMIT_STACK, &limit) == 0 &&
+         (limit.rlim_cur == RLIM_INFINITY || limit.rlim_cur >= (rlim_t{1} << 32));
+}
+
+void BM_SISL_ClosestPoint(benchmark::State& state) {
+  if (!stack_is_large()) {
+    state.SkipWithError("SISL's s1953 can overflow an 8 MiB stack: run under `ulimit -s unlimited`");
+    for (auto _ : state) {
+    }
+    return;
+  }
+  const int n = static_cast<int>(state.range(0));
+  const Workload& w = workload(n);
+  const std::vector<SislCurve>& curves = sisl_curves(n);
+  std::vector<double> t(kPointsPerCurve);
+  int c = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < kPointsPerCurve; ++k) t[k] = sisl_parameter(curves[c].get(), w.points[c][k]);
+    benchmark::DoNotOptimize(t.data());
+    benchmark::ClobberMemory();
+    c = (c + 1) % kCurves;
+  }
+  state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
+  report_agreement(state, "sisl", [&] {
+    return measure_agreement(w, [&](int curve, int k) { return sisl_parameter(curves[curve].get(), w.points[curve][k]); });
+  });
+}
+
+#endif  // BEZINV_HAVE_SISL
+
+// Registered degree by degree (OCCT/n, SISL/n, bezinv/n, then the next n), so the three figures
+// of a degree are measured minutes apart at most on a shared machine.
+const bool registered = [] {
+  for (int n : {2, 3, 5, 8, 12, 15, 20, 24}) {
+#ifdef BEZINV_HAVE_OCCT
+    benchmark::RegisterBenchmark("BM_OCCT_ProjectPointOnCurve", BM_OCCT_ProjectPointOnCurve)->Arg(n)->Unit(benchmark::kMicrosecond);
+#endif
+#ifdef BEZINV_HAVE_SISL
+    benchmark::RegisterBenchmark("BM_SISL_ClosestPoint", BM_SISL_ClosestPoint)->Arg(n)->Unit(benchmark::kMicrosecond);
+#endif
+    benchmark::RegisterBenchmark("BM_Bezinv_refined", BM_Bezinv_refined)->Arg(n)->Unit(benchmark::kMicrosecond);
+  }
+  return true;
+}();
+
+}  // namespace
