@@ -20,6 +20,7 @@
 #error "BEZINV_CLI_PATH must name the bezinv binary (tests/CMakeLists.txt defines it)"
 #endif
 
+#include "support/de_casteljau.hpp"
 #include "support/run_bezinv.hpp"
 #include "support/scratch_directory.hpp"
 #include "support/split.hpp"
@@ -36,14 +37,9 @@ using bezinv::test_support::Outcome;
 using bezinv::test_support::quoted;
 using bezinv::test_support::run_bezinv;
 
-using Vec2 = std::array<double, 2>;
-
-Vec2 de_casteljau(std::vector<Vec2> p, double t) {
-  for (std::size_t level = 1; level < p.size(); ++level)
-    for (std::size_t i = 0; i + level < p.size(); ++i)
-      for (int c = 0; c < 2; ++c) p[i][c] = (1 - t) * p[i][c] + t * p[i + 1][c];
-  return p[0];
-}
+using bezinv::test_support::de_casteljau;
+using bezinv::test_support::rational_de_casteljau;
+using bezinv::test_support::Vec2;
 
 const std::vector<Vec2> kCubic{{0, 0}, {1, 2}, {3, 2}, {4, 0}};
 const std::vector<Vec2> kLine{{0, 0}, {2, 1}};

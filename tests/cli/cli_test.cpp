@@ -18,6 +18,7 @@
 #error "BEZINV_CLI_PATH must name the bezinv binary (tests/CMakeLists.txt defines it)"
 #endif
 
+#include "support/de_casteljau.hpp"
 #include "support/run_bezinv.hpp"
 #include "support/scratch_directory.hpp"
 #include "support/split.hpp"
@@ -36,25 +37,9 @@ using bezinv::test_support::run_bezinv;
 
 // ---- Independent truth: points from known parameters ----------------------------------------
 
-using Vec2 = std::array<double, 2>;
-
-// de Casteljau on control points (valid for t outside [0,1] too: it is the polynomial itself).
-Vec2 de_casteljau(std::vector<Vec2> p, double t) {
-  for (std::size_t level = 1; level < p.size(); ++level)
-    for (std::size_t i = 0; i + level < p.size(); ++i)
-      for (int c = 0; c < 2; ++c) p[i][c] = (1 - t) * p[i][c] + t * p[i + 1][c];
-  return p[0];
-}
-
-// Rational de Casteljau on homogeneous points (w x, w y, w).
-Vec2 rational_de_casteljau(const std::vector<Vec2>& p, const std::vector<double>& w, double t) {
-  std::vector<std::array<double, 3>> h;
-  for (std::size_t i = 0; i < p.size(); ++i) h.push_back({w[i] * p[i][0], w[i] * p[i][1], w[i]});
-  for (std::size_t level = 1; level < h.size(); ++level)
-    for (std::size_t i = 0; i + level < h.size(); ++i)
-      for (int c = 0; c < 3; ++c) h[i][c] = (1 - t) * h[i][c] + t * h[i + 1][c];
-  return {h[0][0] / h[0][2], h[0][1] / h[0][2]};
-}
+using bezinv::test_support::de_casteljau;
+using bezinv::test_support::rational_de_casteljau;
+using bezinv::test_support::Vec2;
 
 // The cubic's x(t) = 3t + 3t^2 - 2t^3 is increasing on [-0.36, 1.36], so each of the points below
 // has exactly one parameter on the whole curve, not only on the segment.

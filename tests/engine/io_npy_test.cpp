@@ -18,6 +18,7 @@
 
 #include "bezinv/io.hpp"
 #include "bezinv/plan.hpp"
+#include "support/expect_input_error.hpp"
 #include "support/scratch_directory.hpp"
 #include "support/split.hpp"
 
@@ -32,18 +33,7 @@ using test_support::split;
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 
-template <class Run>
-void expect_input_error(Run run, std::initializer_list<std::string> fragments) {
-  try {
-    run();
-    ADD_FAILURE() << "no InputError; expected one mentioning " << *fragments.begin();
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
-    for (const std::string& fragment : fragments)
-      EXPECT_NE(message.find(fragment), std::string::npos) << "'" << fragment << "' missing in: " << message;
-  }
-}
+using test_support::expect_input_error;
 
 // A .npy file from its parts: magic, version, little-endian header length, the dict padded with
 // spaces to a multiple of 64 bytes and ended by '\n', then the data (numpy format spec 1.0/2.0).

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "bezinv/io.hpp"
+#include "support/expect_input_error.hpp"
 #include "support/scratch_directory.hpp"
 #include "support/split.hpp"
 
@@ -28,20 +29,7 @@ using test_support::read_file;
 using test_support::ScratchDirectory;
 using test_support::split;
 
-// Runs `read`, expects InputError, and checks that the message is one line containing every
-// fragment (file name, line number, field path ...).
-template <class Read>
-void expect_input_error(Read read, std::initializer_list<std::string> fragments) {
-  try {
-    read();
-    ADD_FAILURE() << "no InputError; expected one mentioning " << *fragments.begin();
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
-    for (const std::string& fragment : fragments)
-      EXPECT_NE(message.find(fragment), std::string::npos) << "'" << fragment << "' missing in: " << message;
-  }
-}
+using test_support::expect_input_error;
 
 // ---------------------------------------------------------------------------------------------
 // CURVES.json
