@@ -74,10 +74,10 @@ void BM_KernelSymmetricSvd(benchmark::State& state, const Implementation* impl, 
 void BM_KernelNullVector(benchmark::State& state, const Implementation* impl, int n) {
   const Inputs& in = inputs(n);
   const std::size_t stride = batch_stride(kBatch);
-  std::vector<double> z(n * stride), defect(stride);
+  std::vector<double> z(n * stride), defect(stride), estimate(2 * stride);
   std::size_t b = 0;
   for (auto _ : state) {
-    impl->null_vector(n, kBatch, stride, in.batches[b].data(), z.data(), defect.data());
+    impl->null_vector(n, kBatch, stride, in.batches[b].data(), z.data(), defect.data(), estimate.data());
     benchmark::DoNotOptimize(z.data());
     benchmark::ClobberMemory();
     b = (b + 1) % in.batches.size();

@@ -140,7 +140,7 @@ HWY_INLINE hn::Vec<D> chord(D d, const double* HWY_RESTRICT x, const double* HWY
 template <int N, class D>
 HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, std::size_t lanes,
                                     const double* HWY_RESTRICT B, double* HWY_RESTRICT z,
-                                    double* HWY_RESTRICT defect) {
+                                    double* HWY_RESTRICT defect, double* HWY_RESTRICT estimate) {
   constexpr std::size_t L = hn::MaxLanes(D());
   const auto one = hn::Set(d, 1.0);
   auto entry = [&](int r, int c) {  // B(r, c) from the lower triangle
@@ -178,7 +178,9 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
     for (int c = 0; c < N; ++c) row = hn::MulAdd(hn::Mul(entry(r, c), scale), hn::Load(d, x + c * L), row);
     residual2 = hn::MulAdd(row, row, residual2);
   }
-  auto result = hn::Max(unsettled, hn::Sqrt(residual2));
+  const auto residual = hn::Sqrt(residual2);
+  auto result = hn::Max(unsettled, residual);
+  auto next = hn::Set(d, std::numeric_limits<double>::infinity());  // n = 1: no sigma_{n-1}
 
   if constexpr (N > 1) {
     // w: a fixed vector of mixed signs and sizes, then kept orthogonal to z after every solve (the
@@ -199,30 +201,41 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
       growth = normalize<N>(d, w);  // ~ 1 / sigma_{n-1} of the normalised matrix
     }
     result = hn::Max(result, hn::Mul(hn::Set(d, batch::kEpsilon), growth));
+    next = hn::Div(one, growth);
   }
   // A zero matrix has nullity n: flagged unless n = 1 (then z = (1) is its null vector). NaN (from
   // an overflow) compares false and is mapped to 1, so that such a lane is redone.
   result = hn::IfThenElse(zero_matrix, hn::Set(d, N == 1 ? 0.0 : 1.0), result);
   result = hn::IfThenElse(hn::Le(result, one), result, one);
 
-  HWY_ALIGN double defect_lanes[L];
+  HWY_ALIGN double defect_lanes[L], residual_lanes[L], next_lanes[L];
   hn::Store(result, d, defect_lanes);
+  hn::Store(hn::IfThenElse(zero_matrix, hn::Zero(d), residual), d, residual_lanes);
+  // A zero matrix has every direction null: no gap, unless n = 1 (nothing else to separate from).
+  if constexpr (N > 1) next = hn::IfThenElse(zero_matrix, hn::Zero(d), next);
+  hn::Store(next, d, next_lanes);
   for (std::size_t l = 0; l < lanes; ++l) {
     defect[first + l] = defect_lanes[l];
+    if (estimate) {
+      estimate[first + l] = residual_lanes[l];
+      estimate[stride + first + l] = next_lanes[l];
+    }
     for (int r = 0; r < N; ++r) z[static_cast<std::size_t>(r) * stride + first + l] = x[r * L + l];
   }
 }
 
 template <int N>
-void null_vector_fixed(std::size_t count, std::size_t stride, const double* B, double* z, double* defect) {
+void null_vector_fixed(std::size_t count, std::size_t stride, const double* B, double* z, double* defect,
+                       double* estimate) {
   const hn::ScalableTag<double> d;
   constexpr std::size_t L = hn::MaxLanes(hn::ScalableTag<double>());
   for (std::size_t first = 0; first < count; first += L)
-    null_vector_group<N>(d, stride, first, std::min(L, count - first), B, z, defect);
+    null_vector_group<N>(d, stride, first, std::min(L, count - first), B, z, defect, estimate);
 }
 
-void null_vector_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z, double* defect) {
-  dispatch_size(n, [&](auto size) { null_vector_fixed<decltype(size)::value>(count, stride, B, z, defect); });
+void null_vector_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z, double* defect,
+                       double* estimate) {
+  dispatch_size(n, [&](auto size) { null_vector_fixed<decltype(size)::value>(count, stride, B, z, defect, estimate); });
 }
 
 }  // namespace bezinv::kernels::HWY_NAMESPACE

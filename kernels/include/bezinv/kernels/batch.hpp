@@ -32,8 +32,14 @@ struct Implementation {
   // has a component along the null vector). Writes z (unit 2-norm) and, per lane, a quality
   // estimate `defect[l]` >= 0: small when the iteration converged to a simple null vector;
   // lanes whose defect exceeds the caller's threshold must be redone with symmetric_svd.
+  // `estimate` (may be null; 2 rows of `stride`) receives the evidence without an SVD, both
+  // relative to ||B||_F:
+  //   estimate[l]          ||B z|| / ||B||_F, an upper bound of sigma_n / ||B||_F;
+  //   estimate[stride + l] 1 / ||B^-1 w|| after inverse iterations orthogonal to z: an estimate of
+  //                        sigma_{n-1} / ||B||_F from above (exact when w has converged; the
+  //                        fixed start w has a generic component along every direction); +inf at n = 1.
   void (*null_vector)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
-                      double* defect);
+                      double* defect, double* estimate);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the
