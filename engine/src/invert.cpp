@@ -141,19 +141,19 @@ Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algeb
     c.distance = measure(t_algebraic);
     if (!inside && measure(clamped) <= tolerance) { c.t = clamped; c.distance = measure(clamped); }
   } else {
-    c.t = detail::refine_parameter(plan, u0, v0, t_algebraic, /*stay_on_segment=*/inside);
-    c.distance = measure(c.t);
+    const detail::Refined main = detail::refine_parameter(plan, u0, v0, t_algebraic, /*stay_on_segment=*/inside);
+    c.t = main.t;
+    c.distance = main.distance;
     const bool at_end = c.t == 0.0 || c.t == 1.0;
     if (inside && at_end && !(c.distance <= tolerance)) {
       // Clamped at an end but not there: the point may be on the extension just past it.
-      const double t = detail::refine_parameter(plan, u0, v0, t_algebraic, false);
-      const double d = measure(t);
-      if (d < c.distance) { c.t = t; c.distance = d; }
+      const detail::Refined beyond = detail::refine_parameter(plan, u0, v0, t_algebraic, false);
+      if (beyond.distance < c.distance) { c.t = beyond.t; c.distance = beyond.distance; }
     } else if (!inside) {
       // Started on the extension: the nearest point of the segment wins if it is within tolerance.
-      const double t = detail::refine_parameter(plan, u0, v0, std::clamp(t_algebraic, 0.0, 1.0), true);
-      const double d = measure(t);
-      if (d <= tolerance) { c.t = t; c.distance = d; }
+      const detail::Refined on_segment =
+          detail::refine_parameter(plan, u0, v0, std::clamp(t_algebraic, 0.0, 1.0), true);
+      if (on_segment.distance <= tolerance) { c.t = on_segment.t; c.distance = on_segment.distance; }
     }
   }
   c.on_curve = c.distance <= tolerance;

@@ -10,9 +10,74 @@
 
 namespace bezinv::detail {
 
+namespace {
+
+// The four Bernstein polynomials of the normalized curve (x_num, x_den, y_num, y_den) go through
+// de Casteljau together: one pass over four independent chains, with fixed-size storage. The
+// arithmetic per polynomial is exactly bernstein_value's / bernstein_jet's (same operations in
+// the same order), so every caller sees the same numbers whichever way it evaluates.
+struct Four {
+  std::array<double, kMaxDegree + 1> a, b, c, d;
+};
+
+void load(const InversionPlan& plan, Four& f) {
+  const std::size_t count = plan.x_num.size();
+  std::copy_n(plan.x_num.begin(), count, f.a.begin());
+  std::copy_n(plan.x_den.begin(), count, f.b.begin());
+  std::copy_n(plan.y_num.begin(), count, f.c.begin());
+  std::copy_n(plan.y_den.begin(), count, f.d.begin());
+}
+
+// `steps` rounds of de Casteljau on the first `top + 1` coefficients.
+void de_casteljau(Four& f, int top, int steps, double t) {
+  const double s = 1.0 - t;
+  for (int r = 1; r <= steps; ++r)
+    for (int i = 0; i <= top - r; ++i) {
+      f.a[i] = s * f.a[i] + t * f.a[i + 1];
+      f.b[i] = s * f.b[i] + t * f.b[i + 1];
+      f.c[i] = s * f.c[i] + t * f.c[i + 1];
+      f.d[i] = s * f.d[i] + t * f.d[i + 1];
+    }
+}
+
+// |(dx, dy)|: the plain formula when it can neither overflow nor underflow (the common case, and
+// several times cheaper than std::hypot), hypot otherwise.
+double length(double dx, double dy) {
+  const double h = std::sqrt(dx * dx + dy * dy);
+  return (h < 1e150 && h > 1e-150) ? h : std::hypot(dx, dy);
+}
+
+}  // namespace
+
+std::array<double, 2> curve_point(const InversionPlan& plan, double t) {
+  Four f;
+  load(plan, f);
+  de_casteljau(f, plan.degree, plan.degree, t);
+  return {f.a[0] / f.b[0], f.c[0] / f.d[0]};
+}
+
 CurveJet curve_jet(const InversionPlan& plan, double t) {
-  const auto N = bernstein_jet(plan.x_num, t), D = bernstein_jet(plan.x_den, t);
-  const auto M = bernstein_jet(plan.y_num, t), E = bernstein_jet(plan.y_den, t);
+  // Run de Casteljau until three points remain: they are the coefficients of a quadratic whose
+  // second difference, first difference and value give p'', p', p (Farin, Ch. 5); see bernstein_jet.
+  const int n = plan.degree;
+  Four f;
+  load(plan, f);
+  de_casteljau(f, n, n - 2, t);
+  const double s = 1.0 - t;
+  BernsteinJet N{}, D{}, M{}, E{};
+  auto finish = [&](std::array<double, kMaxDegree + 1>& b, BernsteinJet& out) {
+    if (n >= 2) {
+      out.second = n * (n - 1.0) * (b[2] - 2.0 * b[1] + b[0]);
+      b[0] = s * b[0] + t * b[1];
+      b[1] = s * b[1] + t * b[2];
+    }
+    out.first = n * (b[1] - b[0]);
+    out.value = s * b[0] + t * b[1];
+  };
+  finish(f.a, N);
+  finish(f.b, D);
+  finish(f.c, M);
+  finish(f.d, E);
   CurveJet j;
   j.x = N.value / D.value;
   j.dx = (N.first - D.first * j.x) / D.value;
@@ -24,18 +89,22 @@ CurveJet curve_jet(const InversionPlan& plan, double t) {
 }
 
 double distance(const InversionPlan& plan, double u0, double v0, double t) {
-  const auto p = plan.normalized_point(t);
-  return std::hypot(p[0] - u0, p[1] - v0);
+  const auto p = curve_point(plan, t);
+  return length(p[0] - u0, p[1] - v0);
 }
 
-double refine_parameter(const InversionPlan& plan, double u0, double v0, double t0, bool stay_on_segment) {
-  if (!std::isfinite(t0)) return t0;
+Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double t0, bool stay_on_segment) {
+  if (!std::isfinite(t0)) return {t0, std::nan("")};
   double t = stay_on_segment ? std::clamp(t0, 0.0, 1.0) : t0;
-  double d = distance(plan, u0, v0, t);
-  if (!std::isfinite(d)) return t;
+  // d is |P(t) - P0| at the current t whenever `d_current`; the jet at t gives it for free.
+  double d = 0.0;
+  bool d_current = false;
   for (int iteration = 0; iteration < kNewtonMaxIterations; ++iteration) {
     const CurveJet j = curve_jet(plan, t);
     const double ex = j.x - u0, ey = j.y - v0;
+    d = length(ex, ey);
+    d_current = true;
+    if (!std::isfinite(d)) return {t, d};
     const double g1 = ex * j.dx + ey * j.dy;                          // f(t)
     const double speed2 = j.dx * j.dx + j.dy * j.dy;
     double g2 = speed2 + ex * j.ddx + ey * j.ddy;                     // f'(t)
@@ -52,8 +121,8 @@ double refine_parameter(const InversionPlan& plan, double u0, double v0, double 
       if (stay_on_segment) next = std::clamp(next, 0.0, 1.0);
       const double moved = std::abs(next - t);
       t = next;
-      d = distance(plan, u0, v0, t);
-      if (moved <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) return t;
+      d_current = false;
+      if (moved <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) break;
       continue;
     }
     bool accepted = false;
@@ -66,14 +135,14 @@ double refine_parameter(const InversionPlan& plan, double u0, double v0, double 
         const double moved = std::abs(next - t);
         t = next;
         d = dn;
-        if (moved <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) return t;
+        if (moved <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) return {t, d};
         break;
       }
       step *= 0.5;
     }
     if (!accepted) break;
   }
-  return t;
+  return {t, d_current ? d : distance(plan, u0, v0, t)};
 }
 
 double nearest_parameter_on_segment(const InversionPlan& plan, double u0, double v0, double hint) {
@@ -102,9 +171,8 @@ double nearest_parameter_on_segment(const InversionPlan& plan, double u0, double
 
   double best_t = 0.0, best_d = std::numeric_limits<double>::infinity();
   auto consider = [&](double t0) {
-    const double t = refine_parameter(plan, u0, v0, t0, /*stay_on_segment=*/true);
-    const double dt = distance(plan, u0, v0, t);
-    if (dt < best_d) { best_d = dt; best_t = t; }
+    const Refined r = refine_parameter(plan, u0, v0, t0, /*stay_on_segment=*/true);
+    if (r.distance < best_d) { best_d = r.distance; best_t = r.t; }
   };
   if (hint >= 0.0 && hint <= 1.0) consider(hint);
   for (int i = 0; i < found; ++i) consider(static_cast<double>(minima[i].second) / samples);

@@ -9,14 +9,21 @@ namespace bezinv::detail {
 struct CurveJet { double x, y, dx, dy, ddx, ddy; };
 CurveJet curve_jet(const InversionPlan& plan, double t);
 
+// P(t) alone (the same numbers as InversionPlan::normalized_point, in one fused pass).
+std::array<double, 2> curve_point(const InversionPlan& plan, double t);
+
 // |P(t) - (u0, v0)| in normalized units (NaN where a denominator vanishes).
 double distance(const InversionPlan& plan, double u0, double v0, double t);
+
+// A parameter and |P(t) - P0| there (the refinement has it at hand; recomputing it would be the
+// most expensive part of refining an on-curve point).
+struct Refined { double t, distance; };
 
 // Newton's method on f(t) = (P(t) - P0) . P'(t) (the nearest-point condition), started at t0.
 // Safeguards: each step is at most kNewtonMaxStep and must not increase |P(t) - P0| (halved until
 // it does), so the iterate stays in the basin it started in; with `stay_on_segment` it is also
-// clamped to [0,1]. Returns the last accepted iterate.
-double refine_parameter(const InversionPlan& plan, double u0, double v0, double t0, bool stay_on_segment);
+// clamped to [0,1]. Returns the last accepted iterate and its distance.
+Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double t0, bool stay_on_segment);
 
 // Parameter of the nearest point of the segment [0,1] to (u0, v0): dense sampling finds every
 // basin, each local minimum is refined, the best one wins. `hint` (if in [0,1]) is refined too.
