@@ -41,6 +41,7 @@ struct InvertArguments {
   std::string curves_path, points_path, out_path;
   double relative_tolerance = bezinv::kDefaultRelativeTolerance;
   bool no_refine = false;
+  bool svd_only = false;
   int threads = 0;
   bool verbose = false;
   bezinv::CurveSelection selection;
@@ -132,6 +133,7 @@ int run_invert(const InvertArguments& arguments) {
   bezinv::InvertOptions options;
   options.relative_tolerance = arguments.relative_tolerance;
   options.refine = !arguments.no_refine;
+  options.fast_path = !arguments.svd_only;
   options.threads = arguments.threads;
 
   const auto reader = bezinv::open_points(arguments.points_path, curves, arguments.selection);
@@ -205,6 +207,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   invert->add_flag("--no-refine", invert_arguments.no_refine,
                    "Report the paper's algebraic t (no Newton refinement to the nearest point)");
+  invert->add_flag("--svd-only", invert_arguments.svd_only,
+                   "Answer every point by the SVD (exact sigma_min/sigma_next on every row; slower)");
   const CLI::Validator non_negative([](std::string& text) { return check_count(text, 0); }, "N>=0");
   const CLI::Validator positive([](std::string& text) { return check_count(text, 1); }, "N>=1");
   invert->add_option("--threads", invert_arguments.threads, "Worker threads (0: all cores)")
@@ -247,6 +251,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bool profile_no_refine = false;
   profile->add_flag("--no-refine", profile_no_refine, "Algebraic t only (no Newton refinement)");
+  bool profile_svd_only = false;
+  profile->add_flag("--svd-only", profile_svd_only, "Every point by the SVD (no LU fast path)");
   profile->add_flag("--json", profile_options.json, "One JSON object on stdout");
 
   try {
@@ -260,6 +266,7 @@ int main(int argc, char** argv) {
     if (demo->parsed()) return bezinv::cli::run_demo(demo_points, demo_threads);
     if (profile->parsed()) {
       profile_options.refine = !profile_no_refine;
+      profile_options.fast_path = !profile_svd_only;
       profile_options.kind = profile_kind == "bezier"            ? bezinv::CurveKind::bezier
                              : profile_kind == "rational"        ? bezinv::CurveKind::rational
                                                                  : bezinv::CurveKind::rational_bezier;

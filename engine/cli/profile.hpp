@@ -14,6 +14,7 @@ struct ProfileOptions {
   int threads = 0;        // 0 = all cores
   double noise = 0.0;     // points moved off the curve by up to noise x the curve's diagonal
   bool refine = true;
+  bool fast_path = true;
   bool json = false;
   unsigned long long seed = 20261122;
 };

@@ -41,6 +41,7 @@ const char* to_string(Path path) {
     case Path::bezout_pair: return "bezout_pair";
     case Path::sylvester: return "sylvester";
     case Path::nearest: return "nearest";
+    case Path::bezout_lu: return "bezout_lu";
   }
   return "?";
 }
@@ -184,6 +185,12 @@ struct BatchWorkspace {
   std::vector<double> V = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
   std::array<double, kBatchLanes> t_algebraic;
   std::array<Candidate, kBatchLanes> main;
+  // Fast path (LU null vector): z, defect and the two sigma estimates, lane-major like sigma.
+  std::vector<double> z = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
+  std::array<double, kBatchLanes> defect;
+  std::array<double, 2 * kBatchLanes> estimate;
+  // The lanes left for the SVD path, compacted to the front: compact lane k is batch lane lane_of[k].
+  std::array<std::uint8_t, kBatchLanes> lane_of;
 };
 
 BatchWorkspace& batch_workspace() {
@@ -370,42 +377,90 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
   }
   clock.lap(&StageSeconds::form_b);
 
+  // 2-4 on the fast path (refinement on, degree >= 2): the null vector by LU and inverse
+  // iteration, read out, refined. A lane is answered here only when nothing else could change its
+  // answer: the kernel's evidence says z is a simple null vector (defect) far from a second null
+  // direction (the sigma_{n-1} estimate clears kSecondNullDirectionRatio with the margin
+  // kFastPathGapRatio), no degree drop, and the refined point is on the segment within the
+  // tolerance. Every other lane goes on to the SVD path below, which decides exactly as before.
+  // With refinement off the output is the paper's algebraic t, so it always comes from the SVD.
+  if (options.fast_path && options.refine && n >= 2 && n <= kFastPathMaxDegree) {
+    kernels::active_implementation().null_vector(n, count, stride, w.B.data(), w.z.data(), w.defect.data(),
+                                                 w.estimate.data());
+    clock.lap(&StageSeconds::kernel);
+    for (std::size_t l = 0; l < count; ++l) {
+      w.t_algebraic[l] = PointResult::nan;
+      if (!w.active[l] || !(w.defect[l] <= kFastPathMaxDefect) || !(w.estimate[stride + l] >= kFastPathGapRatio))
+        continue;
+      std::array<double, kMaxDegree> z;
+      for (int r = 0; r < n; ++r) z[r] = w.z[r * stride + l];
+      w.t_algebraic[l] = parameter_from_null_vector(std::span<const double>(z.data(), n));
+    }
+    clock.lap(&StageSeconds::read_out);
+    for (std::size_t l = 0; l < count; ++l) {
+      if (!std::isfinite(w.t_algebraic[l])) continue;
+      const Candidate c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
+      if (!c.on_segment || degree_drops(plan, point_polynomials(plan, w.u[l], w.v[l]), w.u[l], w.v[l])) continue;
+      PointResult& r = results[l];
+      r.t = c.t;
+      r.residual = c.distance * plan.scale;
+      r.status = Status::ok;
+      r.path = Path::bezout_lu;
+      r.sigma_min = w.estimate[l];
+      r.sigma_next = w.estimate[stride + l];
+      w.active[l] = 0;
+    }
+    clock.lap(&StageSeconds::refine);
+  }
+
+  // The SVD path for the lanes still undecided, compacted to the front of the batch (in order, so
+  // moving lane lane_of[k] >= k down to k never overwrites a lane still to be moved).
+  std::size_t m = 0;
+  for (std::size_t l = 0; l < count; ++l) {
+    if (!w.active[l]) continue;
+    if (m != l) {
+      for (int i = 0; i < nn; ++i) w.B[i * stride + m] = w.B[i * stride + l];
+      w.u[m] = w.u[l];
+      w.v[m] = w.v[l];
+    }
+    w.lane_of[m++] = static_cast<std::uint8_t>(l);
+  }
+  if (m == 0) return;
+
   // 2. kernel.
-  if (n >= 2) batch_symmetric_svd(n, count, stride, w.B.data(), w.sigma.data(), w.V.data());
+  if (n >= 2) batch_symmetric_svd(n, m, stride, w.B.data(), w.sigma.data(), w.V.data());
   clock.lap(&StageSeconds::kernel);
 
   // 3. read-out: the right singular vector of the smallest singular value (degree 1: B is 1 x 1
   // with no null vector to read; p and q are linear, see linear_parameter).
-  for (std::size_t l = 0; l < count; ++l) {
-    w.t_algebraic[l] = PointResult::nan;
-    if (!w.active[l]) continue;
+  for (std::size_t k = 0; k < m; ++k) {
+    w.t_algebraic[k] = PointResult::nan;
     if (n == 1) {
-      w.t_algebraic[l] = linear_parameter(point_polynomials(plan, w.u[l], w.v[l]));
-    } else if (w.sigma[l] > 0 && std::isfinite(w.sigma[l])) {
+      w.t_algebraic[k] = linear_parameter(point_polynomials(plan, w.u[k], w.v[k]));
+    } else if (w.sigma[k] > 0 && std::isfinite(w.sigma[k])) {
       std::array<double, kMaxDegree> z;
-      for (int r = 0; r < n; ++r) z[r] = w.V[((n - 1) * n + r) * stride + l];
-      w.t_algebraic[l] = parameter_from_null_vector(std::span<const double>(z.data(), n));
+      for (int r = 0; r < n; ++r) z[r] = w.V[((n - 1) * n + r) * stride + k];
+      w.t_algebraic[k] = parameter_from_null_vector(std::span<const double>(z.data(), n));
     }
   }
   clock.lap(&StageSeconds::read_out);
 
   // 4. refine and measure the main candidate.
-  for (std::size_t l = 0; l < count; ++l) {
-    w.main[l] = Candidate{};
-    if (w.active[l] && (n == 1 || (w.sigma[l] > 0 && std::isfinite(w.sigma[l]))))
-      w.main[l] = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout, tolerance, options.refine);
+  for (std::size_t k = 0; k < m; ++k) {
+    w.main[k] = Candidate{};
+    if (n == 1 || (w.sigma[k] > 0 && std::isfinite(w.sigma[k])))
+      w.main[k] = settle(plan, w.u[k], w.v[k], w.t_algebraic[k], Path::bezout, tolerance, options.refine);
   }
   clock.lap(&StageSeconds::refine);
 
   // 5. decide.
   std::array<double, kMaxDegree> sigma;
   std::array<double, kMaxDegree * kMaxDegree> V;
-  for (std::size_t l = 0; l < count; ++l) {
-    if (!w.active[l]) continue;
-    for (int k = 0; k < n && n >= 2; ++k) sigma[k] = w.sigma[k * stride + l];
-    for (int i = 0; i < nn && n >= 2; ++i) V[i] = w.V[i * stride + l];
+  for (std::size_t k = 0; k < m; ++k) {
+    for (int i = 0; i < n && n >= 2; ++i) sigma[i] = w.sigma[i * stride + k];
+    for (int i = 0; i < nn && n >= 2; ++i) V[i] = w.V[i * stride + k];
     if (n == 1) sigma[0] = 0.0;
-    decide(plan, w.u[l], w.v[l], w.main[l], sigma.data(), V.data(), options, results[l]);
+    decide(plan, w.u[k], w.v[k], w.main[k], sigma.data(), V.data(), options, results[w.lane_of[k]]);
   }
   clock.lap(&StageSeconds::decide);
 }

@@ -439,6 +439,67 @@ TEST(InvertProperty, BatchedEqualsSinglePointBitForBit) {
   EXPECT_GT(points.size(), 1000u);
 }
 
+// ---- the fast path (LU null vector) against the SVD path -------------------------------------------
+
+// Every kind of point on every random case, and the constructed crossings: the fast path may answer
+// a row only when the SVD path gives the same status, and then the same t up to Newton's own
+// rounding. Both routes refine to the same root of f(t) = (P(t) - P0) . P'(t) from seeds that differ
+// by ~1e-13, so the last iterates may differ by the rounding of f near the root: the accuracy
+// model's parameter_bound, not bit equality.
+TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
+  Measured m{"fast path vs SVD path (same rows)"};
+  const InvertOptions svd_only{.fast_path = false};
+  std::size_t fast_rows = 0, rows = 0;
+  double worst_over = 0;  // sigma_next estimate / the SVD's sigma_{n-1}/sigma_1 (>= the over-estimate)
+  auto compare = [&](const Case& c, const KnownPoint& k) {
+    const PointResult fast = invert_point(c.plan, k.point);
+    const PointResult svd = invert_point(c.plan, k.point, svd_only);
+    ++rows;
+    EXPECT_NE(svd.path, Path::bezout_lu) << describe(c, k, svd);
+    ASSERT_EQ(fast.status, svd.status) << "fast: " << describe(c, k, fast) << "\nsvd: " << describe(c, k, svd);
+    if (fast.path != Path::bezout_lu) {
+      EXPECT_TRUE(identical(fast, svd)) << c.name;  // not answered by the fast path: the SVD path's row
+      return;
+    }
+    ++fast_rows;
+    EXPECT_EQ(fast.status, Status::ok) << describe(c, k, fast);
+    EXPECT_EQ(svd.path, Path::bezout) << describe(c, k, svd);
+    const double dt = std::abs(fast.t - svd.t);
+    EXPECT_LE(dt, 2 * parameter_bound(c, k)) << "fast: " << describe(c, k, fast) << "\nsvd: " << describe(c, k, svd);
+    EXPECT_LE(std::abs(fast.residual - svd.residual), residual_bound(c, k)) << describe(c, k, fast);
+    // The evidence: sigma_min bounds sigma_n/||B||_F from above, sigma_next estimates sigma_{n-1}/||B||_F
+    // from above and was at least kFastPathGapRatio, so the SVD's sigma_{n-1}/sigma_1 clears
+    // kSecondNullDirectionRatio.
+    EXPECT_GE(fast.sigma_next, kFastPathGapRatio);
+    EXPECT_GT(svd.sigma_next, kSecondNullDirectionRatio) << describe(c, k, svd);
+    worst_over = std::max(worst_over, fast.sigma_next / svd.sigma_next);
+    m.add(dt, dt / parameter_bound(c, k), std::abs(fast.residual - svd.residual) / c.plan.diagonal);
+  };
+  for (const Case& c : random_cases()) {
+    std::mt19937_64 rng(c.seed + 8);
+    std::vector<KnownPoint> points = datasets::segment_points(*c.sampling, 24, rng);
+    for (const auto& set : {datasets::end_points(*c.sampling), datasets::extension_points(*c.sampling, 6, rng),
+                            datasets::normal_offset_points(*c.sampling, 6, 1e-7, 0.1, rng)})
+      points.insert(points.end(), set.begin(), set.end());
+    for (const KnownPoint& k : points) compare(c, k);
+  }
+  for (CurveKind kind : kKinds)
+    for (int degree = 3; degree <= 12; ++degree) {
+      const std::uint64_t seed = seed_of(kind, degree, ControlPolygon::unit_square, 9);
+      std::mt19937_64 rng(seed);
+      const double t1 = datasets::uniform(rng, 0.05, 0.45), t2 = datasets::uniform(rng, 0.55, 0.95);
+      Case c = make_case(case_name(kind, degree, ControlPolygon::unit_square, seed) + " crossing",
+                         datasets::with_self_intersection(kind, degree, t1, t2, rng), seed);
+      for (const KnownPoint& k : datasets::crossing_points(*c.sampling, t1, t2, 4, 0.3 * kDefaultRelativeTolerance, rng))
+        compare(c, k);
+    }
+  RecordProperty("fast_rows", static_cast<int>(fast_rows));
+  RecordProperty("rows", static_cast<int>(rows));
+  std::printf("[ measured ] fast path answered %zu of %zu rows; sigma_next estimate / SVD's at most %.3g\n",
+              fast_rows, rows, worst_over);
+  EXPECT_GT(fast_rows, rows / 5);  // the comparison is not vacuous
+}
+
 // ---- the paper's algebraic parameter ---------------------------------------------------------------
 
 TEST(InvertProperty, AlgebraicParameterWithoutRefinementIsClose) {

@@ -229,7 +229,7 @@ TEST(NpyResults, WriterOutputIsAStructuredArrayNumpyCanRead) {
     results[i].sigma_min = -5e-324;
     results[i].sigma_next = std::numeric_limits<double>::max();
     results[i].status = static_cast<Status>(i % 6);
-    results[i].path = static_cast<Path>(i % 5);
+    results[i].path = static_cast<Path>(i % 6);
   }
   const std::string out = scratch.path("out.npy");
   {
@@ -254,11 +254,12 @@ TEST(NpyResults, WriterOutputIsAStructuredArrayNumpyCanRead) {
     EXPECT_TRUE(same_bits(double_at(npy.data, r + 24), results[i].sigma_min)) << i;
     EXPECT_TRUE(same_bits(double_at(npy.data, r + 32), results[i].sigma_next)) << i;
     EXPECT_EQ(npy.data[r + 40], static_cast<char>(i % 6)) << i;  // the Status enum value
-    EXPECT_EQ(npy.data[r + 41], static_cast<char>(i % 5)) << i;  // the Path enum value
+    EXPECT_EQ(npy.data[r + 41], static_cast<char>(i % 6)) << i;  // the Path enum value
   }
   // The documented codes are the enum order.
   EXPECT_EQ(static_cast<int>(Status::invalid_input), 4);
   EXPECT_EQ(static_cast<int>(Path::nearest), 4);
+  EXPECT_EQ(static_cast<int>(Path::bezout_lu), 5);
 }
 
 TEST(NpyResults, AWriterNeverCommittedLeavesNothing) {

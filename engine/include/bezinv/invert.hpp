@@ -23,10 +23,13 @@ const char* to_string(Status status);
 // Which computation produced t.
 enum class Path : std::uint8_t {
   none,
-  bezout,       // null vector of the Bezout matrix (paper Sect. 3)
+  bezout,       // null vector of the Bezout matrix by its SVD (paper Sect. 3)
   bezout_pair,  // two-dimensional null space of the Bezout matrix (double point / near degree drop)
   sylvester,    // Sylvester matrix at the true degrees of p and q (paper Sect. 4)
   nearest,      // nearest-point search on the segment (point off the curve)
+  bezout_lu,    // null vector of the Bezout matrix by LU and inverse iteration (the fast path; sigma_min
+                // and sigma_next are then the kernel's estimates relative to ||B||_F, see kernels/batch.hpp).
+                // Last, so the codes of the .npy results file stay as they were.
 };
 const char* to_string(Path path);
 
@@ -46,6 +49,10 @@ struct InvertOptions {
   double relative_tolerance = kDefaultRelativeTolerance;  // x the control-point bounding-box diagonal
   bool refine = true;  // Newton to the nearest point at full precision; false = the paper's algebraic t
   int threads = 0;     // 0: all cores
+  // Answer the points it can by the fast path (LU null vector, path bezout_lu, sigma columns
+  // estimated); false: every point by the SVD (exact singular values on every row, slower).
+  // Used only with refine: the unrefined output is the paper's algebraic t, from the SVD.
+  bool fast_path = true;
 };
 
 struct Point { double x, y; };

@@ -29,6 +29,20 @@ inline constexpr double kImproperSigmaRatio = 1e-10;
 // false trigger costs time, never correctness.
 inline constexpr double kSecondNullDirectionRatio = 1e-3;
 
+// Fast path (refinement on): a lane whose null vector comes from LU and inverse iteration is
+// answered without an SVD only when the kernel's evidence rules out everything the SVD path would
+// look at. kFastPathGapRatio: the estimate of sigma_{n-1}/||B||_F (from above; measured at most
+// 1.6x over, see kernels/src/batch/constants.hpp, kDeflatedIterations) must clear
+// kSecondNullDirectionRatio by a factor 10, so that sigma_{n-1}/sigma_1 >= sigma_{n-1}/||B||_F is
+// above it and the SVD path would not have looked for a second parameter either.
+// kFastPathMaxDefect: z must be a converged, simple null vector to this level (on-curve points
+// reach 1e-12; the seed only has to lie in the right Newton basin, which the refined distance
+// then verifies, so noisy points within the tolerance pass too).
+// kFastPathMaxDegree: the LU kernel is sized up to kernels::kMaxBatchSize.
+inline constexpr double kFastPathGapRatio = 10 * kSecondNullDirectionRatio;
+inline constexpr double kFastPathMaxDefect = 1e-6;
+inline constexpr int kFastPathMaxDegree = 32;
+
 // Degree drop (paper Sect. 4): the power-basis leading coefficient of p = X - x0 W (or q) counts as
 // zero when it is at most this times sum_i C(n,i)|p_i|, the bound on its size. Near such points one
 // root of p and q runs off to infinity and the Bezout matrix gains a near-null direction.

@@ -36,8 +36,9 @@ struct Implementation {
   // relative to ||B||_F:
   //   estimate[l]          ||B z|| / ||B||_F, an upper bound of sigma_n / ||B||_F;
   //   estimate[stride + l] 1 / ||B^-1 w|| after inverse iterations orthogonal to z: an estimate of
-  //                        sigma_{n-1} / ||B||_F from above (exact when w has converged; the
-  //                        fixed start w has a generic component along every direction); +inf at n = 1.
+  //                        sigma_{n-1} / ||B||_F from above (up to rounding, measured >= 0.998x;
+  //                        exact when w has converged, and the fixed start w has a generic component
+  //                        along every direction); +inf at n = 1.
   void (*null_vector)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                       double* defect, double* estimate);
 };
