@@ -3,8 +3,8 @@
 //     parameter of the nearest extremum (LowerDistanceParameter);
 //   - SISL: s1953 (all closest points between a curve and a point) on the same curve written as a
 //     rational B-spline with Bezier knots, the candidate nearest to the point;
-// and bezinv's batched `invert` (refined, one thread) on the very same points, so the ratios come
-// from one run. Per degree: 64 random rational Bezier curves x 1024 isolated on-curve points at
+// the paper's way (bench/paper_way.hpp) and Eigen per point, and bezinv's batched `invert` (refined,
+// one and two threads) on the very same points, so the ratios come from one run. Per degree: 64 random rational Bezier curves x 1024 isolated on-curve points at
 // known t (datasets_gen), cycled so nothing is cache-hot (one iteration = one curve's 1024 points).
 //
 // Each benchmark also reports, from a separate untimed pass over all 64 x 1024 points,
@@ -31,6 +31,10 @@
 #include "bezinv/datasets/random_curve.hpp"
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
+#include "bezinv/null_vector.hpp"
+#include "paper_way.hpp"
+
+#include <Eigen/Eigenvalues>
 
 #ifdef BEZINV_HAVE_OCCT
 #include <Geom2dAPI_ProjectPointOnCurve.hxx>
@@ -99,6 +103,7 @@ const Workload& workload(int degree) {
 
 struct Agreement {
   double agree = 0, median_dt = 0, no_answer = 0;
+  double fast_path = -1;  // bezinv only: the share of rows answered by the LU fast path
 };
 
 // The untimed check: parameter(c, k) for every point of every curve against the known t.
@@ -132,6 +137,7 @@ void report_agreement(benchmark::State& state, const std::string& library,
   state.counters["agree"] = it->second.agree;
   state.counters["median_dt"] = it->second.median_dt;
   state.counters["no_answer"] = it->second.no_answer;
+  if (it->second.fast_path >= 0) state.counters["fast_path"] = it->second.fast_path;
 }
 
 // ---- bezinv ----------------------------------------------------------------------------------------
@@ -144,11 +150,11 @@ const std::vector<InversionPlan>& plans(int degree) {
   return it->second;
 }
 
-void BM_Bezinv_refined(benchmark::State& state) {
+void run_bezinv(benchmark::State& state, int threads, const char* label) {
   const int n = static_cast<int>(state.range(0));
   const Workload& w = workload(n);
   const std::vector<InversionPlan>& p = plans(n);
-  const InvertOptions options{.threads = 1};
+  const InvertOptions options{.threads = threads};
   std::vector<PointResult> results(kPointsPerCurve);
   int c = 0;
   for (auto _ : state) {
@@ -158,13 +164,82 @@ void BM_Bezinv_refined(benchmark::State& state) {
     c = (c + 1) % kCurves;
   }
   state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
-  report_agreement(state, "bezinv", [&] {
+  report_agreement(state, label, [&] {
     std::vector<std::vector<double>> t(kCurves);
+    std::size_t fast = 0;
     for (int curve = 0; curve < kCurves; ++curve) {
       invert(p[curve], w.points[curve], results, options);
-      for (const PointResult& r : results) t[curve].push_back(r.t);
+      for (const PointResult& r : results) {
+        t[curve].push_back(r.t);
+        fast += r.path == Path::bezout_lu;
+      }
     }
-    return measure_agreement(w, [&](int curve, int k) { return t[curve][k]; });
+    Agreement a = measure_agreement(w, [&](int curve, int k) { return t[curve][k]; });
+    a.fast_path = static_cast<double>(fast) / (kCurves * kPointsPerCurve);
+    return a;
+  });
+}
+
+void BM_Bezinv_refined(benchmark::State& state) { run_bezinv(state, 1, "bezinv"); }
+// Two threads: wall-clock time (UseRealTime at registration), so items_per_second is the throughput.
+void BM_Bezinv_refined_2threads(benchmark::State& state) { run_bezinv(state, 2, "bezinv"); }
+
+// ---- the paper's way, and Eigen per point ----------------------------------------------------------
+
+// bench/paper_way.hpp: recurrence as printed + Eigen::JacobiSVD per point, algebraic t only.
+void BM_Paper_recurrence_JacobiSVD(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Workload& w = workload(n);
+  bench::PaperWay paper(n);
+  std::vector<double> t(kPointsPerCurve);
+  int c = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < kPointsPerCurve; ++k) t[k] = paper.parameter(w.curves[c], w.points[c][k]);
+    benchmark::DoNotOptimize(t.data());
+    benchmark::ClobberMemory();
+    c = (c + 1) % kCurves;
+  }
+  state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
+  report_agreement(state, "paper", [&] {
+    return measure_agreement(w, [&](int curve, int k) { return paper.parameter(w.curves[curve], w.points[curve][k]); });
+  });
+}
+
+// bezinv's plan (B from four precomputed matrices) with Eigen's SelfAdjointEigenSolver per point on
+// fixed-capacity storage (no allocation), and bezinv's read-out: what the engine would be with
+// Eigen as its kernel and no batching. Algebraic t only.
+using EigenMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxDegree, kMaxDegree>;
+double eigen_parameter(const InversionPlan& plan, Point point, EigenMatrix& B,
+                       Eigen::SelfAdjointEigenSolver<EigenMatrix>& solver) {
+  const int n = plan.degree;
+  const auto uv = plan.normalize(point.x, point.y);
+  bezout_at(plan, uv[0], uv[1], std::span<double>(B.data(), static_cast<std::size_t>(n) * n));
+  solver.compute(B, Eigen::ComputeEigenvectors);
+  // The eigenvalue of least magnitude and its vector.
+  int k = 0;
+  for (int i = 1; i < n; ++i)
+    if (std::abs(solver.eigenvalues()[i]) < std::abs(solver.eigenvalues()[k])) k = i;
+  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxDegree, 1> z = solver.eigenvectors().col(k);
+  return parameter_from_null_vector(std::span<const double>(z.data(), n));
+}
+
+void BM_Eigen_SelfAdjoint_per_point(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Workload& w = workload(n);
+  const std::vector<InversionPlan>& p = plans(n);
+  EigenMatrix B(n, n);
+  Eigen::SelfAdjointEigenSolver<EigenMatrix> solver(n);
+  std::vector<double> t(kPointsPerCurve);
+  int c = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < kPointsPerCurve; ++k) t[k] = eigen_parameter(p[c], w.points[c][k], B, solver);
+    benchmark::DoNotOptimize(t.data());
+    benchmark::ClobberMemory();
+    c = (c + 1) % kCurves;
+  }
+  state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
+  report_agreement(state, "eigen", [&] {
+    return measure_agreement(w, [&](int curve, int k) { return eigen_parameter(p[curve], w.points[curve][k], B, solver); });
   });
 }
 
@@ -308,17 +383,25 @@ void BM_SISL_ClosestPoint(benchmark::State& state) {
 
 #endif  // BEZINV_HAVE_SISL
 
-// Registered degree by degree (OCCT/n, SISL/n, bezinv/n, then the next n), so the three figures
-// of a degree are measured minutes apart at most on a shared machine.
+// Registered degree by degree (OCCT/n, SISL/n, the paper's way, Eigen, bezinv on 1 and 2 threads,
+// then the next n), so the figures of a degree are measured minutes apart at most on a shared machine.
 const bool registered = [] {
-  for (int n : {2, 3, 5, 8, 12, 15, 20, 24}) {
+  for (int n = 1; n <= 24; ++n) {
 #ifdef BEZINV_HAVE_OCCT
     benchmark::RegisterBenchmark("BM_OCCT_ProjectPointOnCurve", BM_OCCT_ProjectPointOnCurve)->Arg(n)->Unit(benchmark::kMicrosecond);
 #endif
 #ifdef BEZINV_HAVE_SISL
     benchmark::RegisterBenchmark("BM_SISL_ClosestPoint", BM_SISL_ClosestPoint)->Arg(n)->Unit(benchmark::kMicrosecond);
 #endif
+    if (n >= 2) {  // B is 1 x 1 at degree 1: no null vector to read
+      benchmark::RegisterBenchmark("BM_Paper_recurrence_JacobiSVD", BM_Paper_recurrence_JacobiSVD)->Arg(n)->Unit(benchmark::kMicrosecond);
+      benchmark::RegisterBenchmark("BM_Eigen_SelfAdjoint_per_point", BM_Eigen_SelfAdjoint_per_point)->Arg(n)->Unit(benchmark::kMicrosecond);
+    }
     benchmark::RegisterBenchmark("BM_Bezinv_refined", BM_Bezinv_refined)->Arg(n)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark("BM_Bezinv_refined_2threads", BM_Bezinv_refined_2threads)
+        ->Arg(n)
+        ->UseRealTime()
+        ->Unit(benchmark::kMicrosecond);
   }
   return true;
 }();

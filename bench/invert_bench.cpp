@@ -21,6 +21,7 @@
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
+#include "paper_way.hpp"
 
 namespace {
 
@@ -76,50 +77,14 @@ void BM_Engine_refined_all_cores(benchmark::State& state) { run_engine(state, tr
 
 // ---- the paper's way -------------------------------------------------------------------------------
 
-// The Bini-Gemignani recurrence exactly as printed in the paper (Maple, 1-based B[1..n, 1..n],
-// p[0..n], q[0..n]), over the whole matrix.
-void printed_bezout_recurrence(const double* p, const double* q, int n, Eigen::MatrixXd& B) {
-  auto b = [&](int i, int j) -> double& { return B(i - 1, j - 1); };
-  for (int i = 1; i <= n; ++i) b(i, 1) = (static_cast<double>(n) / i) * (p[i] * q[0] - p[0] * q[i]);
-  for (int j = 1; j <= n - 1; ++j) b(n, j + 1) = (static_cast<double>(n) / (n - j)) * (p[n] * q[j] - p[j] * q[n]);
-  for (int j = 1; j <= n - 1; ++j)
-    for (int i = 1; i <= n - 1; ++i)
-      b(i, j + 1) = (static_cast<double>(n) * n / (static_cast<double>(i) * (n - j))) * (p[i] * q[j] - p[j] * q[i]) +
-                    (static_cast<double>(j) * (n - i) / (static_cast<double>(i) * (n - j))) * b(i + 1, j);
-}
-
-// The paper's read-out: the largest component of z, the larger of its two neighbours, and
-// t = i z_i / (i z_i + (N+1-i) z_{i-1}) with N + 1 = z.size().
-double paper_read_out(const Eigen::VectorXd& z) {
-  const int size = static_cast<int>(z.size());
-  int k = 0;
-  for (int i = 1; i < size; ++i)
-    if (std::abs(z[i]) > std::abs(z[k])) k = i;
-  int i = k;  // the pair (z_{i-1}, z_i)
-  if (k == 0 || (k + 1 < size && std::abs(z[k + 1]) > std::abs(z[k - 1]))) i = k + 1;
-  return i * z[i] / (i * z[i] + (size - i) * z[i - 1]);
-}
-
 void BM_Paper_printed_recurrence_JacobiSVD(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const Workload& w = workload(n);
-  Eigen::MatrixXd B(n, n);
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(n, n, Eigen::ComputeFullV);  // allocated once, reused
-  std::vector<double> p(n + 1), q(n + 1), t(kPointsPerCurve);
+  bench::PaperWay paper(n);  // allocated once, reused
+  std::vector<double> t(kPointsPerCurve);
   int c = 0;
   for (auto _ : state) {
-    const Curve& curve = w.curves[c];
-    for (int k = 0; k < kPointsPerCurve; ++k) {
-      const Point P0 = w.points[c][k];
-      // Paper Sect. 3: p = sum w_i a_i beta_i - x0 sum w_i beta_i, q likewise with b_i, y0.
-      for (int i = 0; i <= n; ++i) {
-        p[i] = curve.x_num[i] - P0.x * curve.x_den[i];
-        q[i] = curve.y_num[i] - P0.y * curve.y_den[i];
-      }
-      printed_bezout_recurrence(p.data(), q.data(), n, B);
-      svd.compute(B, Eigen::ComputeFullV);
-      t[k] = paper_read_out(svd.matrixV().col(n - 1));
-    }
+    for (int k = 0; k < kPointsPerCurve; ++k) t[k] = paper.parameter(w.curves[c], w.points[c][k]);
     benchmark::DoNotOptimize(t.data());
     benchmark::ClobberMemory();
     c = (c + 1) % kCurves;

@@ -77,7 +77,7 @@ void BM_KernelNullVector(benchmark::State& state, const Implementation* impl, in
   std::vector<double> z(n * stride), defect(stride), estimate(2 * stride);
   std::size_t b = 0;
   for (auto _ : state) {
-    impl->null_vector(n, kBatch, stride, in.batches[b].data(), z.data(), defect.data(), estimate.data());
+    impl->null_vector(n, kBatch, stride, in.batches[b].data(), z.data(), defect.data(), estimate.data(), nullptr);
     benchmark::DoNotOptimize(z.data());
     benchmark::ClobberMemory();
     b = (b + 1) % in.batches.size();

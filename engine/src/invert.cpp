@@ -187,6 +187,7 @@ struct BatchWorkspace {
   std::array<Candidate, kBatchLanes> main;
   // Fast path (LU null vector): z, defect and the two sigma estimates, lane-major like sigma.
   std::vector<double> z = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
+  std::vector<double> second = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
   std::array<double, kBatchLanes> defect;
   std::array<double, 2 * kBatchLanes> estimate;
   // The lanes left for the SVD path, compacted to the front: compact lane k is batch lane lane_of[k].
@@ -323,6 +324,27 @@ void decide(const InversionPlan& plan, double u0, double v0, const Candidate& ma
   report(nearest, nearest.distance <= tolerance ? Status::ok : Status::off_curve);
 }
 
+// The fast path's look for a second parameter (as decide() does with the SVD's two last singular
+// vectors): the parameters whose Bernstein vector lies in span{z, second}, refined; true when one
+// of them is on the segment at a parameter distinct from t.
+bool second_parameter_on_segment(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, double t,
+                                 double tolerance) {
+  const int n = plan.degree;
+  std::array<double, kMaxDegree> z, second;
+  for (int r = 0; r < n; ++r) {
+    z[r] = w.z[r * kBatchLanes + l];
+    second[r] = w.second[r * kBatchLanes + l];
+  }
+  double roots[2];
+  const int count = parameters_from_null_space(std::span<const double>(z.data(), n),
+                                               std::span<const double>(second.data(), n), roots);
+  for (int i = 0; i < count; ++i) {
+    const Candidate c = settle(plan, w.u[l], w.v[l], roots[i], Path::bezout_pair, tolerance, true);
+    if (c.on_segment && std::abs(c.t - t) > kDistinctParameterGap) return true;
+  }
+  return false;
+}
+
 // One batch (count <= kBatchLanes) of points of one curve through the five stages.
 void invert_batch(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
                   const InvertOptions& options, StageSeconds* stages) {
@@ -378,20 +400,22 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
   clock.lap(&StageSeconds::form_b);
 
   // 2-4 on the fast path (refinement on, degree >= 2): the null vector by LU and inverse
-  // iteration, read out, refined. A lane is answered here only when nothing else could change its
-  // answer: the kernel's evidence says z is a simple null vector (defect) far from a second null
-  // direction (the sigma_{n-1} estimate clears kSecondNullDirectionRatio with the margin
-  // kFastPathGapRatio), no degree drop, and the refined point is on the segment within the
-  // tolerance. Every other lane goes on to the SVD path below, which decides exactly as before.
+  // iteration, read out, refined. A lane is answered here only when the SVD path could not answer
+  // it differently: the kernel's evidence says z is a converged, simple null vector (defect), there
+  // is no degree drop, and the refined point is on the segment within the tolerance. Where the
+  // sigma_{n-1} estimate does not clear kSecondNullDirectionRatio by the margin kFastPathGapRatio
+  // the SVD path would look for a second parameter: so does the fast path, in the span of z and
+  // the kernel's second vector, and a lane that finds one goes to the SVD path (double points are
+  // always answered there), as does a lane whose estimate is below kFastPathMinGap. Every other
+  // lane goes on to the SVD path below, which decides as before.
   // With refinement off the output is the paper's algebraic t, so it always comes from the SVD.
   if (options.fast_path && options.refine && n >= 2 && n <= kFastPathMaxDegree) {
     kernels::active_implementation().null_vector(n, count, stride, w.B.data(), w.z.data(), w.defect.data(),
-                                                 w.estimate.data());
+                                                 w.estimate.data(), w.second.data());
     clock.lap(&StageSeconds::kernel);
     for (std::size_t l = 0; l < count; ++l) {
       w.t_algebraic[l] = PointResult::nan;
-      if (!w.active[l] || !(w.defect[l] <= kFastPathMaxDefect) || !(w.estimate[stride + l] >= kFastPathGapRatio))
-        continue;
+      if (!w.active[l] || !(w.defect[l] <= kFastPathMaxDefect) || !(w.estimate[stride + l] >= kFastPathMinGap)) continue;
       std::array<double, kMaxDegree> z;
       for (int r = 0; r < n; ++r) z[r] = w.z[r * stride + l];
       w.t_algebraic[l] = parameter_from_null_vector(std::span<const double>(z.data(), n));
@@ -401,6 +425,9 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
       if (!std::isfinite(w.t_algebraic[l])) continue;
       const Candidate c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
       if (!c.on_segment || degree_drops(plan, point_polynomials(plan, w.u[l], w.v[l]), w.u[l], w.v[l])) continue;
+      if (!(w.estimate[stride + l] >= kFastPathGapRatio) && n >= 3 &&
+          second_parameter_on_segment(plan, w, l, c.t, tolerance))
+        continue;
       PointResult& r = results[l];
       r.t = c.t;
       r.residual = c.distance * plan.scale;
@@ -425,10 +452,9 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
     }
     w.lane_of[m++] = static_cast<std::uint8_t>(l);
   }
-  if (m == 0) return;
 
   // 2. kernel.
-  if (n >= 2) batch_symmetric_svd(n, m, stride, w.B.data(), w.sigma.data(), w.V.data());
+  if (n >= 2 && m > 0) batch_symmetric_svd(n, m, stride, w.B.data(), w.sigma.data(), w.V.data());
   clock.lap(&StageSeconds::kernel);
 
   // 3. read-out: the right singular vector of the smallest singular value (degree 1: B is 1 x 1

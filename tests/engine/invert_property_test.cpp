@@ -467,12 +467,13 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
     const double dt = std::abs(fast.t - svd.t);
     EXPECT_LE(dt, 2 * parameter_bound(c, k)) << "fast: " << describe(c, k, fast) << "\nsvd: " << describe(c, k, svd);
     EXPECT_LE(std::abs(fast.residual - svd.residual), residual_bound(c, k)) << describe(c, k, fast);
-    // The evidence: sigma_min bounds sigma_n/||B||_F from above, sigma_next estimates sigma_{n-1}/||B||_F
-    // from above and was at least kFastPathGapRatio, so the SVD's sigma_{n-1}/sigma_1 clears
-    // kSecondNullDirectionRatio.
-    EXPECT_GE(fast.sigma_next, kFastPathGapRatio);
-    EXPECT_GT(svd.sigma_next, kSecondNullDirectionRatio) << describe(c, k, svd);
+    // The evidence: the sigma_{n-1} estimate is from above and relative to ||B||_F >= sigma_1; when
+    // it cleared kFastPathGapRatio the SVD path did not look for a second parameter either.
     worst_over = std::max(worst_over, fast.sigma_next / svd.sigma_next);
+    if (fast.sigma_next >= kFastPathGapRatio) {
+      EXPECT_GT(svd.sigma_next, kSecondNullDirectionRatio) << describe(c, k, svd);
+    }
+    EXPECT_LE(fast.sigma_next, 3 * svd.sigma_next) << describe(c, k, fast);
     m.add(dt, dt / parameter_bound(c, k), std::abs(fast.residual - svd.residual) / c.plan.diagonal);
   };
   for (const Case& c : random_cases()) {

@@ -62,7 +62,7 @@ Constructed with_nullity(int n, int nullity, std::mt19937_64& rng) {
 struct Batch {
   int n;
   std::size_t count, stride;
-  std::vector<double> B, sigma, V, z, defect, estimate;
+  std::vector<double> B, sigma, V, z, defect, estimate, second;
 
   Batch(const std::vector<Dense>& matrices, std::mt19937_64& rng)
       : n(static_cast<int>(matrices.front().rows())), count(matrices.size()), stride(batch_stride(count)) {
@@ -77,10 +77,11 @@ struct Batch {
     z.assign(n * stride, kNaN);
     defect.assign(stride, kNaN);
     estimate.assign(2 * stride, kNaN);
+    second.assign(n * stride, kNaN);
   }
   void run(const Implementation& impl) {
     impl.symmetric_svd(n, count, stride, B.data(), sigma.data(), V.data());
-    impl.null_vector(n, count, stride, B.data(), z.data(), defect.data(), estimate.data());
+    impl.null_vector(n, count, stride, B.data(), z.data(), defect.data(), estimate.data(), second.data());
   }
   double s(std::size_t l, int k) const { return sigma[k * stride + l]; }
   Eigen::VectorXd v(std::size_t l, int k) const {
@@ -91,6 +92,11 @@ struct Batch {
   Eigen::VectorXd null(std::size_t l) const {
     Eigen::VectorXd out(n);
     for (int r = 0; r < n; ++r) out(r) = z[r * stride + l];
+    return out;
+  }
+  Eigen::VectorXd next(std::size_t l) const {  // the fast path's second vector
+    Eigen::VectorXd out(n);
+    for (int r = 0; r < n; ++r) out(r) = second[r * stride + l];
     return out;
   }
   // The results contract covers lanes < count only: nothing is written to the padding lanes.
@@ -206,7 +212,7 @@ constexpr double kNextEstimateMaxOver = 3.0;
 TEST(BatchNullVector, RankDeficientByConstruction) {
   std::mt19937_64 rng(7);
   double worst_rank1_defect = 0, least_nullity2_defect = 1, least_regular_defect = 1, worst_next_over = 1,
-         least_next_over = 1;
+         least_next_over = 1, least_second_in_null_space = 1;
   for (int n = 1; n <= kMaxBatchSize; ++n) {
     for (std::size_t count : {std::size_t{1}, std::size_t{5}, std::size_t{8}, std::size_t{17}}) {
       std::vector<Constructed> rank1, nullity2, regular;
@@ -238,6 +244,8 @@ TEST(BatchNullVector, RankDeficientByConstruction) {
           const double frobenius = rank1[l].b.norm();
           EXPECT_LE(a.estimate[l], 64 * kEps) << "||Bz|| / ||B||_F, lane " << l;
           if (n >= 2) {
+            EXPECT_NEAR(a.next(l).norm(), 1.0, 1e-14) << "lane " << l;
+            EXPECT_LE(std::abs(a.next(l).dot(a.null(l))), 1e-12) << "second is orthogonal to z, lane " << l;
             const double next = a.s(l, n - 2) / frobenius;
             const double ratio = a.estimate[a.stride + l] / next;
             // From above in exact arithmetic; the deflated solves round (measured down to 0.9986).
@@ -258,6 +266,13 @@ TEST(BatchNullVector, RankDeficientByConstruction) {
             // Whatever it is, z lies in the 2-D null space, and so do the SVD's last two vectors.
             const Dense null_space = nullity2[l].q.rightCols(2);
             EXPECT_GE((null_space.transpose() * b.null(l)).norm(), 1 - 1e-10) << "lane " << l;
+            // The deflated iterate heads for the other null direction (both are amplified ~1/eps by
+            // the solves, and z is projected out). Not to rounding level: at nullity 2 the rounding
+            // of the two tiny pivots decides the mix (measured down to 0.9855); a random unit vector
+            // would give ~sqrt(2/n). The engine never answers a nullity-2 lane on the fast path.
+            const double in_span = (null_space.transpose() * b.next(l)).norm();
+            EXPECT_GE(in_span, 0.95) << "second, lane " << l;
+            least_second_in_null_space = std::min(least_second_in_null_space, in_span);
             for (int k : {n - 2, n - 1}) EXPECT_GE((null_space.transpose() * b.v(l, k)).norm(), 1 - 1e-12);
           }
         }
@@ -275,6 +290,7 @@ TEST(BatchNullVector, RankDeficientByConstruction) {
   RecordProperty("least_nonsingular_defect", sci(least_regular_defect));
   RecordProperty("worst_sigma_next_estimate_over_true", sci(worst_next_over));
   RecordProperty("least_sigma_next_estimate_over_true", sci(least_next_over));
+  RecordProperty("least_second_in_null_space", sci(least_second_in_null_space));
 }
 
 // The smallest singular vector of a nearly singular matrix with sigma_{n-1} / sigma_1 = 1e-6,

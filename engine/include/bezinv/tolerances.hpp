@@ -30,16 +30,22 @@ inline constexpr double kImproperSigmaRatio = 1e-10;
 inline constexpr double kSecondNullDirectionRatio = 1e-3;
 
 // Fast path (refinement on): a lane whose null vector comes from LU and inverse iteration is
-// answered without an SVD only when the kernel's evidence rules out everything the SVD path would
-// look at. kFastPathGapRatio: the estimate of sigma_{n-1}/||B||_F (from above; measured at most
-// 1.6x over, see kernels/src/batch/constants.hpp, kDeflatedIterations) must clear
-// kSecondNullDirectionRatio by a factor 10, so that sigma_{n-1}/sigma_1 >= sigma_{n-1}/||B||_F is
-// above it and the SVD path would not have looked for a second parameter either.
+// answered without an SVD only when the kernel's evidence rules out what the SVD path would do
+// differently (engine/src/invert.cpp, stages 2-4 of the fast path).
+// kFastPathGapRatio: the SVD path looks for a second parameter when sigma_{n-1}/sigma_1 <=
+// kSecondNullDirectionRatio. The fast path's estimate of sigma_{n-1}/||B||_F is from above (at most
+// 1.6x over, kernels/src/batch/constants.hpp) and ||B||_F >= sigma_1, so below the threshold the
+// estimate is below 1.6 kSecondNullDirectionRatio: looking whenever it is below 10x the threshold
+// looks at least whenever the SVD path would.
 // kFastPathMaxDefect: z must be a converged, simple null vector to this level (on-curve points
 // reach 1e-12; the seed only has to lie in the right Newton basin, which the refined distance
-// then verifies, so noisy points within the tolerance pass too).
+// then verifies, so noisy points within the tolerance pass too; nullity 2 gives ~1).
 // kFastPathMaxDegree: the LU kernel is sized up to kernels::kMaxBatchSize.
-inline constexpr double kFastPathGapRatio = 10 * kSecondNullDirectionRatio;
+// kFastPathMinGap: below this sigma_{n-1} estimate the lane may be at a double point (the ratio is
+// O(distance to the crossing), and proper curves stay above 5e-5 elsewhere, see above); it goes to
+// the SVD path, whose two last singular vectors are exact where the kernel's second vector is not.
+inline constexpr double kFastPathGapRatio = 3 * kSecondNullDirectionRatio;
+inline constexpr double kFastPathMinGap = 1e-5;
 inline constexpr double kFastPathMaxDefect = 1e-6;
 inline constexpr int kFastPathMaxDegree = 32;
 

@@ -9,7 +9,7 @@ namespace bezinv::kernels::batch {
 using SymmetricSvdKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* sigma,
                                     double* V);
 using NullVectorKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
-                                  double* defect, double* estimate);
+                                  double* defect, double* estimate, double* second);
 
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);

@@ -39,8 +39,11 @@ struct Implementation {
   //                        sigma_{n-1} / ||B||_F from above (up to rounding, measured >= 0.998x;
   //                        exact when w has converged, and the fixed start w has a generic component
   //                        along every direction); +inf at n = 1.
+  // `second` (may be null; n >= 2; laid out like z) receives that deflated iterate, unit length
+  // and orthogonal to z: an approximation of the singular vector of sigma_{n-1}, so that z and
+  // second span the near-null space when sigma_{n-1} is small too.
   void (*null_vector)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
-                      double* defect, double* estimate);
+                      double* defect, double* estimate, double* second);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the
