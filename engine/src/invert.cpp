@@ -10,6 +10,9 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <vector>
 #include <cmath>
 
@@ -510,6 +513,20 @@ PointResult invert_point(const InversionPlan& plan, Point point, const InvertOpt
 
 namespace {
 
+// One arena per thread count, made on first use and kept: creating an arena per call cost ~70 us,
+// a third of a 1024-point call at degree 3 (bench/baselines_bench.cpp, 2 threads). Arenas may be
+// entered from several threads at once.
+tbb::task_arena& arena_for(int threads) {
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<tbb::task_arena>> arenas;
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::unique_ptr<tbb::task_arena>& arena = arenas[threads];
+  // A prvalue: binding task_arena::automatic itself to make_unique's reference would odr-use it.
+  const int concurrency = threads > 0 ? threads : int{tbb::task_arena::automatic};
+  if (!arena) arena = std::make_unique<tbb::task_arena>(concurrency);
+  return *arena;
+}
+
 template <typename Body>
 void for_each_batch(std::size_t count, const InvertOptions& options, Body&& body) {
   const std::size_t batches = (count + kBatchLanes - 1) / kBatchLanes;
@@ -521,8 +538,7 @@ void for_each_batch(std::size_t count, const InvertOptions& options, Body&& body
     run(tbb::blocked_range<std::size_t>(0, batches));
     return;
   }
-  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batches, 4), run); });
+  arena_for(options.threads).execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batches, 4), run); });
 }
 
 void invert_curve(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
