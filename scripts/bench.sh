@@ -46,7 +46,7 @@ json.dump(merged, open(f"{build}/bench-results.json", "w"), indent=2)
 
 runs = {}
 for b in baselines["benchmarks"]:
-    name, degree = b["name"].rsplit("/", 1)
+    name, degree = b["name"].removesuffix("/real_time").rsplit("/", 1)  # UseRealTime adds /real_time
     runs[(name, int(degree))] = b
 def rate(name, n):
     b = runs.get((name, n))
@@ -58,13 +58,18 @@ def si(x):
     for unit, scale in (("M", 1e6), ("k", 1e3)):
         if x >= scale: return f"{x / scale:.3g}{unit}/s"
     return f"{x:.3g}/s"
-occt, sisl, ours = "BM_OCCT_ProjectPointOnCurve", "BM_SISL_ClosestPoint", "BM_Bezinv_refined"
-print(f"\nload average {baselines['context'].get('load_avg')}, points/s per CPU second, 1 thread each")
-print("| degree | OCCT | SISL | bezinv | bezinv ÷ OCCT | bezinv ÷ SISL | agree OCCT | agree SISL | agree bezinv |")
-print("|---|---|---|---|---|---|---|---|---|")
+occt, sisl, paper, eigen = "BM_OCCT_ProjectPointOnCurve", "BM_SISL_ClosestPoint", "BM_Paper_recurrence_JacobiSVD", "BM_Eigen_SelfAdjoint_per_point"
+one, two = "BM_Bezinv_refined", "BM_Bezinv_refined_2threads"
+def ratio(a, b):
+    return f"{a / b:.2f}×" if a == a and b == b and b > 0 else "-"
+print(f"\nload average {baselines['context'].get('load_avg')}; points/s (1 thread unless noted); ratios are bezinv on 1 thread over the baseline")
+print("| n | OCCT | SISL | paper's way | Eigen per point | bezinv 1 thread | bezinv 2 threads | ÷ OCCT | ÷ SISL | ÷ paper | ÷ Eigen | 2 threads ÷ 1 | fast path | agree OCCT / SISL / bezinv |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for n in sorted({n for (_, n) in runs}):
-    o, s, e = rate(occt, n), rate(sisl, n), rate(ours, n)
-    print(f"| {n} | {si(o)} | {si(s)} | {si(e)} | {e / o:.2f}× | {e / s:.2f}× | "
-          f"{agree(occt, n)} | {agree(sisl, n)} | {agree(ours, n)} |")
+    o, s_, p_, e_, b1, b2 = (rate(x, n) for x in (occt, sisl, paper, eigen, one, two))
+    fp = runs.get((one, n), {}).get("fast_path", float("nan"))
+    print(f"| {n} | {si(o)} | {si(s_)} | {si(p_) if p_ == p_ else '-'} | {si(e_) if e_ == e_ else '-'} | {si(b1)} | {si(b2)} | "
+          f"{ratio(b1, o)} | {ratio(b1, s_)} | {ratio(b1, p_)} | {ratio(b1, e_)} | {ratio(b2, b1)} | {100 * fp:.1f}% | "
+          f"{agree(occt, n)} / {agree(sisl, n)} / {agree(one, n)} |")
 print(f"\nfull results: {build}/bench-results.json")
 EOF
