@@ -19,11 +19,13 @@ struct Outcome {
   std::string out, err;
 };
 
-// `arguments` must already be shell-quoted where needed (see quoted()).
-inline Outcome run_bezinv(const ScratchDirectory& scratch, const std::string& arguments) {
+// `arguments` must already be shell-quoted where needed (see quoted()). `environment`, e.g.
+// "BEZINV_KERNEL=scalar", is set for this run only.
+inline Outcome run_bezinv(const ScratchDirectory& scratch, const std::string& arguments,
+                          const std::string& environment = "") {
   const std::string out = scratch.path("stdout.txt"), err = scratch.path("stderr.txt");
-  const std::string command =
-      std::string("'") + BEZINV_CLI_PATH + "' " + arguments + " >'" + out + "' 2>'" + err + "'";
+  const std::string command = (environment.empty() ? std::string() : "env " + environment + " ") + "'" +
+                              BEZINV_CLI_PATH + "' " + arguments + " >'" + out + "' 2>'" + err + "'";
   const int status = std::system(command.c_str());
   Outcome run;
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
