@@ -450,11 +450,15 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
   Measured m{"fast path vs SVD path (same rows)"};
   const InvertOptions svd_only{.fast_path = false};
   std::size_t fast_rows = 0, rows = 0;
+  std::size_t double_points = 0, near_crossing = 0, near_crossing_double = 0;
   double worst_over = 0;  // sigma_next estimate / the SVD's sigma_{n-1}/sigma_1 (>= the over-estimate)
-  auto compare = [&](const Case& c, const KnownPoint& k) {
-    const PointResult fast = invert_point(c.plan, k.point);
-    const PointResult svd = invert_point(c.plan, k.point, svd_only);
+  auto compare = [&](const Case& c, const KnownPoint& k, double tolerance = kDefaultRelativeTolerance) {
+    const PointResult fast = invert_point(c.plan, k.point, {.relative_tolerance = tolerance});
+    InvertOptions svd_options = svd_only;
+    svd_options.relative_tolerance = tolerance;
+    const PointResult svd = invert_point(c.plan, k.point, svd_options);
     ++rows;
+    double_points += svd.status == Status::double_point;
     EXPECT_NE(svd.path, Path::bezout_lu) << describe(c, k, svd);
     ASSERT_EQ(fast.status, svd.status) << "fast: " << describe(c, k, fast) << "\nsvd: " << describe(c, k, svd);
     if (fast.path != Path::bezout_lu) {
@@ -493,12 +497,25 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
                          datasets::with_self_intersection(kind, degree, t1, t2, rng), seed);
       for (const KnownPoint& k : datasets::crossing_points(*c.sampling, t1, t2, 4, 0.3 * kDefaultRelativeTolerance, rng))
         compare(c, k);
+      // On branch 1 near the crossing, with a tolerance loose enough to reach branch 2: B has a
+      // clear gap there (sigma_{n-1} ~ the distance to the crossing), so the fast path, not the
+      // SVD, must look for the second parameter, find it and leave the row to the SVD path.
+      for (double tolerance : {1e-3, 1e-2})
+        for (double dt : {-3e-4, -1e-4, 1e-4, 3e-4}) {
+          const KnownPoint k = datasets::known_on_curve(c.sampling->curve(), t1 + dt);
+          const std::size_t before = double_points;
+          compare(c, k, tolerance);
+          near_crossing += 1;
+          near_crossing_double += double_points - before;
+        }
     }
   RecordProperty("fast_rows", static_cast<int>(fast_rows));
   RecordProperty("rows", static_cast<int>(rows));
   std::printf("[ measured ] fast path answered %zu of %zu rows; sigma_next estimate / SVD's at most %.3g\n",
               fast_rows, rows, worst_over);
   EXPECT_GT(fast_rows, rows / 5);  // the comparison is not vacuous
+  // ... and most on-branch points near a crossing are double points under those tolerances.
+  EXPECT_GT(near_crossing_double, near_crossing / 2) << near_crossing_double << " of " << near_crossing;
 }
 
 // ---- the paper's algebraic parameter ---------------------------------------------------------------
