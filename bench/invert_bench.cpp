@@ -1,16 +1,11 @@
-// Points per second: the engine's batched `invert` against "the paper's way" (Marco & Martinez
-// Sect. 3 and 5, as a straightforward implementation would do it per point: form p and q, build the
-// Bernstein-Bezout matrix with the printed Bini-Gemignani recurrence over the whole matrix, take a
-// general SVD (Eigen::JacobiSVD, as the paper's MATLAB svd), read t from the last right singular
-// vector). Both see the same 64 curves x 1024 points per degree, cycled so that no curve's plan or
-// points stay cache-hot between iterations (one iteration = one curve's 1024 points).
-//
-// The paper's way gives only the algebraic t (no refinement, no status); compare it with
-// Engine/algebraic (refine = false) for the cost of the method, and with Engine/refined for the cost
-// of the full answer. All single-threaded except Engine/refined_all_cores.
+// Points per second of the engine's batched `invert`, per degree: refined (the full answer, with
+// the fast path), refined by the SVD alone (`fast_path = false`), algebraic (refine = false: the
+// paper's t, always by the SVD), one thread and all cores. 64 curves x 1024 points per degree,
+// cycled so that no curve's plan or points stay cache-hot between iterations (one iteration = one
+// curve's 1024 points). The baselines (the paper's way, Eigen per point, OpenCASCADE, SISL) run in
+// bench/baselines_bench.cpp, beside bezinv in the same process.
 #include <benchmark/benchmark.h>
 
-#include <Eigen/SVD>
 #include <cmath>
 #include <map>
 #include <random>
@@ -21,7 +16,6 @@
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
-#include "paper_way.hpp"
 
 namespace {
 
@@ -57,10 +51,10 @@ const Workload& workload(int degree) {
 
 // ---- the engine ------------------------------------------------------------------------------------
 
-void run_engine(benchmark::State& state, bool refine, int threads) {
+void run_engine(benchmark::State& state, bool refine, int threads, bool fast_path = true) {
   const Workload& w = workload(static_cast<int>(state.range(0)));
   std::vector<PointResult> results(kPointsPerCurve);
-  const InvertOptions options{.refine = refine, .threads = threads};
+  const InvertOptions options{.refine = refine, .threads = threads, .fast_path = fast_path};
   int c = 0;
   for (auto _ : state) {
     invert(w.plans[c], w.points[c], results, options);
@@ -73,30 +67,14 @@ void run_engine(benchmark::State& state, bool refine, int threads) {
 
 void BM_Engine_refined(benchmark::State& state) { run_engine(state, true, 1); }
 void BM_Engine_algebraic(benchmark::State& state) { run_engine(state, false, 1); }
+void BM_Engine_refined_svd_only(benchmark::State& state) { run_engine(state, true, 1, false); }
 void BM_Engine_refined_all_cores(benchmark::State& state) { run_engine(state, true, 0); }
-
-// ---- the paper's way -------------------------------------------------------------------------------
-
-void BM_Paper_printed_recurrence_JacobiSVD(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  const Workload& w = workload(n);
-  bench::PaperWay paper(n);  // allocated once, reused
-  std::vector<double> t(kPointsPerCurve);
-  int c = 0;
-  for (auto _ : state) {
-    for (int k = 0; k < kPointsPerCurve; ++k) t[k] = paper.parameter(w.curves[c], w.points[c][k]);
-    benchmark::DoNotOptimize(t.data());
-    benchmark::ClobberMemory();
-    c = (c + 1) % kCurves;
-  }
-  state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
-}
 
 #define BEZINV_DEGREES ->Arg(3)->Arg(5)->Arg(8)->Arg(15)->Arg(20)->Unit(benchmark::kMicrosecond)
 BENCHMARK(BM_Engine_refined) BEZINV_DEGREES;
 BENCHMARK(BM_Engine_algebraic) BEZINV_DEGREES;
+BENCHMARK(BM_Engine_refined_svd_only) BEZINV_DEGREES;
 BENCHMARK(BM_Engine_refined_all_cores) BEZINV_DEGREES->UseRealTime();
-BENCHMARK(BM_Paper_printed_recurrence_JacobiSVD) BEZINV_DEGREES;
 #undef BEZINV_DEGREES
 
 }  // namespace

@@ -26,8 +26,12 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 build="${BEZINV_BUILD_DIR:-build}"
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF -DBEZINV_BUILD_BENCH=ON -DBEZINV_BUILD_BASELINES=ON >/dev/null
-# Fails here if CMake did not find OpenCASCADE or SISL (no bezinv_bench_baselines target).
+configure=$(cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF -DBEZINV_BUILD_BENCH=ON -DBEZINV_BUILD_BASELINES=ON)
+if ! grep -q "bezinv baselines: OpenCASCADE ON, SISL ON" <<<"$configure"; then
+  echo "bench: CMake did not find OpenCASCADE and SISL:" >&2
+  grep "bezinv baselines" <<<"$configure" >&2 || true
+  exit 1
+fi
 cmake --build "$build" -j"$(nproc)" --target bezinv_bench bezinv_bench_baselines
 
 uptime
