@@ -72,18 +72,10 @@ BernsteinJet bernstein_jet(std::span<const double> c, double t) {
   std::array<double, kMaxCoefficients> b{};  // zeroed: GCC cannot see that only b[0..n] is read
   for (int i = 0; i <= n; ++i) b[i] = c[i];
   const double s = 1.0 - t;
-  // Run de Casteljau until three points remain: they are the coefficients of a quadratic
-  // whose second difference, first difference and value give p'', p', p (Farin, Ch. 5).
+  // Run de Casteljau until three points remain, then bernstein_jet_from_last_points.
   for (int r = 1; r <= n - 2; ++r)
     for (int i = 0; i <= n - r; ++i) b[i] = s * b[i] + t * b[i + 1];
-  double second = 0.0;
-  if (n >= 2) {
-    second = n * (n - 1.0) * (b[2] - 2.0 * b[1] + b[0]);
-    b[0] = s * b[0] + t * b[1];
-    b[1] = s * b[1] + t * b[2];
-  }
-  const double first = n * (b[1] - b[0]);
-  return {s * b[0] + t * b[1], first, second};
+  return bernstein_jet_from_last_points(n, t, b[0], b[1], b[2]);
 }
 
 double power_leading_coefficient(std::span<const double> c) {

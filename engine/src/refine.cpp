@@ -57,27 +57,15 @@ std::array<double, 2> curve_point(const InversionPlan& plan, double t) {
 }
 
 CurveJet curve_jet(const InversionPlan& plan, double t) {
-  // Run de Casteljau until three points remain: they are the coefficients of a quadratic whose
-  // second difference, first difference and value give p'', p', p (Farin, Ch. 5); see bernstein_jet.
+  // Run de Casteljau until three points remain, then read the jet off them (as bernstein_jet).
   const int n = plan.degree;
   Four f;
   load(plan, f);
   de_casteljau(f, n, n - 2, t);
-  const double s = 1.0 - t;
-  BernsteinJet N{}, D{}, M{}, E{};
-  auto finish = [&](std::array<double, kMaxDegree + 1>& b, BernsteinJet& out) {
-    if (n >= 2) {
-      out.second = n * (n - 1.0) * (b[2] - 2.0 * b[1] + b[0]);
-      b[0] = s * b[0] + t * b[1];
-      b[1] = s * b[1] + t * b[2];
-    }
-    out.first = n * (b[1] - b[0]);
-    out.value = s * b[0] + t * b[1];
+  const auto jet = [&](const std::array<double, kMaxDegree + 1>& b) {
+    return bernstein_jet_from_last_points(n, t, b[0], b[1], n >= 2 ? b[2] : 0.0);  // b[2] unset at n = 1
   };
-  finish(f.a, N);
-  finish(f.b, D);
-  finish(f.c, M);
-  finish(f.d, E);
+  const BernsteinJet N = jet(f.a), D = jet(f.b), M = jet(f.c), E = jet(f.d);
   CurveJet j;
   j.x = N.value / D.value;
   j.dx = (N.first - D.first * j.x) / D.value;

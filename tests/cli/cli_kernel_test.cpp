@@ -76,21 +76,15 @@ TEST(CliKernel, EveryKernelGivesTheSameRows) {
   const std::string curves = scratch.write("curves.json", json);
   std::string csv = "curve,x,y\n";
   std::vector<double> known;
-  for (int k = 0; k <= 200; ++k) {
-    const double t = k / 200.0;
+  auto add_point = [&](double t) {
     const Vec2 p = de_casteljau(polygon, t);
     char row[96];
     std::snprintf(row, sizeof row, "w,%.17g,%.17g\n", p[0], p[1]);
     csv += row;
     known.push_back(t);
-  }
-  for (double t : {-0.05, 1.04}) {  // the extension
-    const Vec2 p = de_casteljau(polygon, t);
-    char row[96];
-    std::snprintf(row, sizeof row, "w,%.17g,%.17g\n", p[0], p[1]);
-    csv += row;
-    known.push_back(t);
-  }
+  };
+  for (int k = 0; k <= 200; ++k) add_point(k / 200.0);
+  for (double t : {-0.05, 1.04}) add_point(t);  // the extension
   csv += "w,3.5,9\nw,-2,-2\n";  // off the curve
   known.push_back(std::nan(""));
   known.push_back(std::nan(""));

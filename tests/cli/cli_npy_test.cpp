@@ -16,10 +16,6 @@
 #include <string>
 #include <vector>
 
-#ifndef BEZINV_CLI_PATH
-#error "BEZINV_CLI_PATH must name the bezinv binary (tests/CMakeLists.txt defines it)"
-#endif
-
 #include "support/de_casteljau.hpp"
 #include "support/run_bezinv.hpp"
 #include "support/scratch_directory.hpp"

@@ -22,6 +22,21 @@ double bernstein_value(std::span<const double> coefficients, double t);
 struct BernsteinJet { double value, first, second; };
 BernsteinJet bernstein_jet(std::span<const double> coefficients, double t);
 
+// The end of bernstein_jet, for callers that run de Casteljau themselves (several polynomials in
+// one pass): after n-2 steps on a degree-n polynomial (n >= 1) three points b0, b1, b2 remain (b2
+// unused when n = 1). They are the coefficients of a quadratic whose second difference, first
+// difference and value give p'', p', p (Farin, Ch. 5).
+inline BernsteinJet bernstein_jet_from_last_points(int n, double t, double b0, double b1, double b2) {
+  const double s = 1.0 - t;
+  double second = 0.0;
+  if (n >= 2) {
+    second = n * (n - 1.0) * (b2 - 2.0 * b1 + b0);
+    b0 = s * b0 + t * b1;
+    b1 = s * b1 + t * b2;
+  }
+  return {s * b0 + t * b1, n * (b1 - b0), second};
+}
+
 // Coefficient of t^n in the power basis: sum_i (-1)^{n-i} C(n,i) p_i (the n-th forward difference).
 double power_leading_coefficient(std::span<const double> coefficients);
 
