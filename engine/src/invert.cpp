@@ -129,6 +129,11 @@ struct Candidate {
   bool on_curve = false;    // within tolerance (segment or extension)
 };
 
+void classify(Candidate& c, double tolerance) {
+  c.on_curve = c.distance <= tolerance;
+  c.on_segment = c.on_curve && c.t >= 0.0 && c.t <= 1.0;
+}
+
 // From an algebraic parameter to a verified one: refine (or not), then measure.
 Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algebraic, Path path,
                  double tolerance, bool refine) {
@@ -160,8 +165,7 @@ Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algeb
       if (on_segment.distance <= tolerance) { c.t = on_segment.t; c.distance = on_segment.distance; }
     }
   }
-  c.on_curve = c.distance <= tolerance;
-  c.on_segment = c.on_curve && c.t >= 0.0 && c.t <= 1.0;
+  classify(c, tolerance);
   return c;
 }
 
@@ -178,6 +182,10 @@ Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algeb
 
 constexpr std::size_t kBatchLanes = 64;
 
+// refine.cpp's safeguards, for the lane-batched refinement.
+constexpr kernels::NewtonSettings kNewtonSettings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep,
+                                                  kNewtonMaxHalvings};
+
 // Per-thread storage for one batch, sized for the largest degree once: nothing is allocated per
 // point or per batch.
 struct BatchWorkspace {
@@ -187,6 +195,12 @@ struct BatchWorkspace {
   std::vector<double> sigma = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
   std::vector<double> V = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
   std::array<double, kBatchLanes> t_algebraic;
+  // The fast path's lane-batched refinement: t and |P(t) - P0| (NaN where it left the lane to settle()).
+  std::array<double, kBatchLanes> t_refined, distance;
+  // The fast path's second-parameter check: lanes waiting for it, and their roots (two at most).
+  std::array<std::uint8_t, kBatchLanes> pending;
+  std::array<double, 2 * kBatchLanes> root_t, root_u, root_v, root_distance;
+  std::array<std::uint8_t, 2 * kBatchLanes> root_lane;
   std::array<Candidate, kBatchLanes> main;
   // Fast path (LU null vector): z, defect and the two sigma estimates, lane-major like sigma.
   std::vector<double> z = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
@@ -328,11 +342,15 @@ void decide(const InversionPlan& plan, double u0, double v0, const Candidate& ma
 }
 
 // The fast path's look for a second parameter (as decide() does with the SVD's two last singular
-// vectors): the parameters whose Bernstein vector lies in span{z, second}, refined; true when one
-// of them is on the segment at a parameter distinct from t.
-bool second_parameter_on_segment(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, double t,
-                                 double tolerance) {
-  const int n = plan.degree;
+// vectors): the parameters whose Bernstein vector lies in span{z, second} (lane l's kernel
+// vectors) are queued at w.root_*[first...], for refinement along the segment. Returns how many.
+//
+// Only a parameter on the segment matters here, so every root is refined along the segment (from
+// the nearer end if it lies outside), which is the part of settle() that can end on the segment.
+// settle()'s walk along the extension from a root far outside took most of the time of this check
+// (with it the check cost 57% of the pipeline at degree 8, measured); the SVD path still does
+// both, and tests/engine/invert_property_test.cpp checks that the two paths give the same statuses.
+std::size_t queue_second_parameters(int n, BatchWorkspace& w, std::size_t l, std::size_t first) {
   std::array<double, kMaxDegree> z, second;
   for (int r = 0; r < n; ++r) {
     z[r] = w.z[r * kBatchLanes + l];
@@ -342,16 +360,12 @@ bool second_parameter_on_segment(const InversionPlan& plan, const BatchWorkspace
   const int count = parameters_from_null_space(std::span<const double>(z.data(), n),
                                                std::span<const double>(second.data(), n), roots);
   for (int i = 0; i < count; ++i) {
-    // Only a parameter on the segment matters here, so every root is refined along the segment
-    // (from the nearer end if it lies outside), which is the part of settle() that can end on the
-    // segment. settle()'s walk along the extension from a root far outside took most of the time
-    // of this check (with it the check cost 57% of the pipeline at degree 8, measured); the SVD
-    // path still does both, and tests/engine/invert_property_test.cpp checks that the two paths
-    // give the same statuses.
-    const detail::Refined r = detail::refine_parameter(plan, w.u[l], w.v[l], std::clamp(roots[i], 0.0, 1.0), true);
-    if (r.distance <= tolerance && std::abs(r.t - t) > kDistinctParameterGap) return true;
+    w.root_t[first + i] = std::clamp(roots[i], 0.0, 1.0);  // NaN stays NaN: not settled, refined to NaN
+    w.root_u[first + i] = w.u[l];
+    w.root_v[first + i] = w.v[l];
+    w.root_lane[first + i] = static_cast<std::uint8_t>(l);
   }
-  return false;
+  return static_cast<std::size_t>(count);
 }
 
 // One batch (count <= kBatchLanes) of points of one curve through the five stages.
@@ -430,13 +444,15 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
       w.t_algebraic[l] = parameter_from_null_vector(std::span<const double>(z.data(), n));
     }
     clock.lap(&StageSeconds::read_out);
-    for (std::size_t l = 0; l < count; ++l) {
-      if (!std::isfinite(w.t_algebraic[l])) continue;
-      const Candidate c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
-      if (!c.on_segment || degree_drops(plan, point_polynomials(plan, w.u[l], w.v[l]), w.u[l], w.v[l])) continue;
-      if (!(w.estimate[stride + l] >= kFastPathGapRatio) && n >= 3 &&
-          second_parameter_on_segment(plan, w, l, c.t, tolerance))
-        continue;
+    // Refinement, lane-batched: the kernel runs refine.cpp's safeguarded Newton for every lane whose
+    // t_algebraic is in [0,1] and gives settle()'s numbers bit for bit. It leaves the rest to
+    // settle(), as it does a lane that ends at an end of the segment off the curve (settle() then
+    // also looks along the extension).
+    std::copy_n(w.t_algebraic.begin(), count, w.t_refined.begin());
+    const kernels::RationalCurve curve{n, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(), plan.y_den.data()};
+    kernels::active_implementation().rational_newton(curve, kNewtonSettings, count, w.u.data(), w.v.data(),
+                                                     w.t_refined.data(), w.distance.data());
+    auto answer = [&](std::size_t l, const Candidate& c) {
       PointResult& r = results[l];
       r.t = c.t;
       r.residual = c.distance * plan.scale;
@@ -445,6 +461,44 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
       r.sigma_min = w.estimate[l];
       r.sigma_next = w.estimate[stride + l];
       w.active[l] = 0;
+    };
+    std::size_t roots = 0;
+    for (std::size_t l = 0; l < count; ++l) {
+      w.pending[l] = 0;
+      if (!std::isfinite(w.t_algebraic[l])) continue;
+      Candidate& c = w.main[l];
+      const bool at_end = w.t_refined[l] == 0.0 || w.t_refined[l] == 1.0;
+      if (std::isfinite(w.distance[l]) && !(at_end && !(w.distance[l] <= tolerance))) {
+        c = Candidate{};
+        c.t = w.t_refined[l];
+        c.distance = w.distance[l];
+        c.path = Path::bezout_lu;
+        classify(c, tolerance);
+      } else {
+        c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
+      }
+      if (!c.on_segment || degree_drops(plan, point_polynomials(plan, w.u[l], w.v[l]), w.u[l], w.v[l])) continue;
+      if (w.estimate[stride + l] >= kFastPathGapRatio || n < 3) {
+        answer(l, c);
+        continue;
+      }
+      roots += queue_second_parameters(n, w, l, roots);
+      w.pending[l] = 1;
+    }
+    // The second-parameter check, for the queued roots at once: a lane is answered here unless one
+    // of its roots refines onto the segment, within the tolerance, at a parameter distinct from its t.
+    kernels::active_implementation().rational_newton(curve, kNewtonSettings, roots, w.root_u.data(),
+                                                     w.root_v.data(), w.root_t.data(), w.root_distance.data());
+    for (std::size_t k = 0; k < roots; ++k) {
+      const std::size_t l = w.root_lane[k];
+      detail::Refined r{w.root_t[k], w.root_distance[k]};
+      if (std::isnan(r.distance)) r = detail::refine_parameter(plan, w.root_u[k], w.root_v[k], w.root_t[k], true);
+      if (r.distance <= tolerance && std::abs(r.t - w.main[l].t) > kDistinctParameterGap) w.pending[l] = 0;
+    }
+    for (std::size_t k = 0; k < roots; ++k) {
+      const std::size_t l = w.root_lane[k];
+      if (w.pending[l]) answer(l, w.main[l]);
+      w.pending[l] = 0;  // answered once
     }
     clock.lap(&StageSeconds::refine);
   }

@@ -114,7 +114,7 @@ Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double
       continue;
     }
     bool accepted = false;
-    for (int halving = 0; halving < 40; ++halving) {
+    for (int halving = 0; halving < kNewtonMaxHalvings; ++halving) {
       double next = t + step;
       if (stay_on_segment) next = std::clamp(next, 0.0, 1.0);
       const double dn = distance(plan, u0, v0, next);

@@ -69,6 +69,8 @@ inline constexpr double kNewtonMaxStep = 0.125;
 // Below this step size Newton is in its quadratic region and its steps are taken without the
 // descent test (which cannot resolve t finer than ~sqrt(eps) when the point is off the curve).
 inline constexpr double kNewtonTrustedStep = 1e-6;
+// A larger step is halved at most this many times looking for a point no farther from P0.
+inline constexpr int kNewtonMaxHalvings = 40;
 
 // Nearest-point search on the segment (off-curve points): samples per unit of degree.
 inline constexpr int kNearestSamplesPerDegree = 16;

@@ -32,8 +32,9 @@ struct Table {
     for (std::size_t i = 0; i < kCandidates.size(); ++i) {
       const auto svd = batch::symmetric_svd_kernel(kCandidates[i].target);
       const auto null = batch::null_vector_kernel(kCandidates[i].target);
-      if (svd == nullptr || null == nullptr || (supported & kCandidates[i].target) == 0) continue;
-      storage[count] = Implementation{kCandidates[i].name, svd, null};
+      const auto newton = batch::rational_newton_kernel(kCandidates[i].target);
+      if (svd == nullptr || null == nullptr || newton == nullptr || (supported & kCandidates[i].target) == 0) continue;
+      storage[count] = Implementation{kCandidates[i].name, svd, null, newton};
       available[count] = &storage[count];
       ++count;
     }

@@ -4,15 +4,21 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "bezinv/kernels/batch.hpp"
+
 namespace bezinv::kernels::batch {
 
 using SymmetricSvdKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* sigma,
                                     double* V);
 using NullVectorKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                                   double* defect, double* estimate, double* second);
+using RationalNewtonKernel = void (*)(const RationalCurve& curve, const NewtonSettings& settings,
+                                      std::size_t count, const double* u, const double* v, double* t,
+                                      double* distance);
 
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);
 NullVectorKernel null_vector_kernel(std::int64_t target);
+RationalNewtonKernel rational_newton_kernel(std::int64_t target);
 
 }  // namespace bezinv::kernels::batch

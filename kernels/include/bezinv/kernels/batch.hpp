@@ -18,6 +18,24 @@ namespace bezinv::kernels {
 inline constexpr int kMaxBatchSize = 32;    // largest n
 inline constexpr int kBatchAlignment = 8;   // lanes per AVX-512 register of doubles; strides are multiples
 
+// A plane rational curve (x_num / x_den, y_num / y_den) of degree 1..kMaxBatchSize: four
+// polynomials in the Bernstein basis, degree + 1 coefficients each (see rational_newton).
+struct RationalCurve {
+  int degree;
+  const double* x_num;
+  const double* x_den;
+  const double* y_num;
+  const double* y_den;
+};
+
+// The safeguards of rational_newton (the engine passes its tolerances.hpp values).
+struct NewtonSettings {
+  int max_iterations;   // Newton iterations
+  double max_step;      // largest step in t of one iteration
+  double trusted_step;  // steps up to this are taken without the descent test
+  int max_halvings;     // of a larger step, looking for descent
+};
+
 // One instruction set's kernels. All function pointers are non-null.
 struct Implementation {
   std::string_view name;  // "scalar", "avx2", "avx512"
@@ -44,6 +62,19 @@ struct Implementation {
   // second span the near-null space when sigma_{n-1} is small too.
   void (*null_vector)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                       double* defect, double* estimate, double* second);
+
+  // Newton's method for the nearest point of `curve` to (u[l], v[l]) on the segment [0, 1], one
+  // point per lane from the start t[l]: the engine's safeguarded refinement (engine/src/refine.hpp,
+  // refine_parameter with stay_on_segment), operation for operation and without fused
+  // multiply-add, so every implementation gives the scalar code's bits. Steps of
+  // f(t) = (P(t) - P0) . P'(t), with f' = |P'|^2 + (P - P0) . P'' (|P'|^2 where that is not
+  // positive), capped at settings.max_step and clamped to [0, 1]; a step above
+  // settings.trusted_step is halved until |P(t) - P0| does not increase. A settled lane gets its
+  // t and distance[l] = |P(t) - P0|. A lane the kernel does not settle (start not in [0, 1], or a
+  // distance that is not finite or that the scalar code would compute with std::hypot) keeps its
+  // t and gets distance[l] = NaN: the caller runs the scalar code for it. Arrays have `count` entries.
+  void (*rational_newton)(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
+                          const double* u, const double* v, double* t, double* distance);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the

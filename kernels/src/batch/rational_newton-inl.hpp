@@ -1,0 +1,251 @@
+// Lane-batched Newton's method for the nearest point of a plane rational curve, one point per lane
+// (bezinv/kernels/batch.hpp, Implementation::rational_newton). Re-included once per instruction set
+// by hwy/foreach_target.h (see rational_newton.cpp).
+//
+// Every lane runs the same operations, in the same order, as the engine's scalar refinement
+// (engine/src/refine.cpp: de Casteljau on the four polynomials, the jet read off the last three
+// points, the Newton step of f(t) = (P(t) - P0) . P'(t)). No fused multiply-add is used and the
+// file is compiled with -ffp-contract=off, so a lane settled here has the very bits the scalar
+// code would have produced from the same start, on every instruction set.
+#if defined(BEZINV_KERNELS_BATCH_RATIONAL_NEWTON_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef BEZINV_KERNELS_BATCH_RATIONAL_NEWTON_INL_H_
+#undef BEZINV_KERNELS_BATCH_RATIONAL_NEWTON_INL_H_
+#else
+#define BEZINV_KERNELS_BATCH_RATIONAL_NEWTON_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "batch/sizes-inl.hpp"
+#include "bezinv/kernels/batch.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace bezinv::kernels::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// The four polynomials of the curve (x_num, x_den, y_num, y_den) at one t per lane.
+template <int N, class D>
+struct FourChains {
+  using V = hn::Vec<D>;
+  V a[N + 1], b[N + 1], c[N + 1], e[N + 1];
+
+  FourChains(D d, const RationalCurve& curve) {
+    for (int i = 0; i <= N; ++i) {
+      a[i] = hn::Set(d, curve.x_num[i]);
+      b[i] = hn::Set(d, curve.x_den[i]);
+      c[i] = hn::Set(d, curve.y_num[i]);
+      e[i] = hn::Set(d, curve.y_den[i]);
+    }
+  }
+
+  // `steps` rounds of de Casteljau: f_i <- (1 - t) f_i + t f_{i+1}.
+  void de_casteljau(int steps, V t) {
+    const V s = hn::Sub(hn::Set(hn::DFromV<V>(), 1.0), t);
+    for (int r = 1; r <= steps; ++r)
+      for (int i = 0; i <= N - r; ++i) {
+        a[i] = hn::Add(hn::Mul(s, a[i]), hn::Mul(t, a[i + 1]));
+        b[i] = hn::Add(hn::Mul(s, b[i]), hn::Mul(t, b[i + 1]));
+        c[i] = hn::Add(hn::Mul(s, c[i]), hn::Mul(t, c[i + 1]));
+        e[i] = hn::Add(hn::Mul(s, e[i]), hn::Mul(t, e[i + 1]));
+      }
+  }
+};
+
+// p, p', p'' of one polynomial from the three points left after N-2 de Casteljau steps (the
+// quadratic they define: its second difference, first difference and value; as the engine's
+// bernstein_jet_from_last_points).
+template <int N, class V>
+struct Jet1 {
+  V value, first, second;
+  Jet1(V t, V b0, V b1, V b2) {
+    const hn::DFromV<V> d;
+    const V s = hn::Sub(hn::Set(d, 1.0), t);
+    second = hn::Zero(d);
+    if constexpr (N >= 2) {
+      second = hn::Mul(hn::Set(d, N * (N - 1.0)), hn::Add(hn::Sub(b2, hn::Mul(hn::Set(d, 2.0), b1)), b0));
+      b0 = hn::Add(hn::Mul(s, b0), hn::Mul(t, b1));
+      b1 = hn::Add(hn::Mul(s, b1), hn::Mul(t, b2));
+    }
+    value = hn::Add(hn::Mul(s, b0), hn::Mul(t, b1));
+    first = hn::Mul(hn::Set(d, static_cast<double>(N)), hn::Sub(b1, b0));
+  }
+};
+
+// x = num/den and its two derivatives: x' = (num' - den' x) / den, x'' = (num'' - 2 den' x' - den'' x) / den.
+template <int N, class V>
+HWY_INLINE void quotient_jet(const Jet1<N, V>& num, const Jet1<N, V>& den, V& x, V& dx, V& ddx) {
+  const hn::DFromV<V> d;
+  x = hn::Div(num.value, den.value);
+  dx = hn::Div(hn::Sub(num.first, hn::Mul(den.first, x)), den.value);
+  ddx = hn::Div(hn::Sub(hn::Sub(num.second, hn::Mul(hn::Mul(hn::Set(d, 2.0), den.first), dx)), hn::Mul(den.second, x)),
+                den.value);
+}
+
+// |(ex, ey)| as the engine's length(): sqrt(ex^2 + ey^2), which the engine replaces by std::hypot
+// outside (1e-150, 1e150). `plain` marks the lanes where both agree (0 included): elsewhere the
+// kernel leaves the lane to the scalar code rather than imitate hypot's rounding.
+template <class V>
+HWY_INLINE V plain_length(V ex, V ey, hn::Mask<hn::DFromV<V>>& plain) {
+  const hn::DFromV<V> d;
+  const V h = hn::Sqrt(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)));
+  plain = hn::Or(hn::And(hn::Lt(h, hn::Set(d, 1e150)), hn::Gt(h, hn::Set(d, 1e-150))),
+                 hn::And(hn::Eq(ex, hn::Zero(d)), hn::Eq(ey, hn::Zero(d))));
+  return h;
+}
+
+// |P(t) - (u, v)| by a full de Casteljau pass (the engine's distance()).
+template <int N, class D>
+HWY_INLINE hn::Vec<D> point_distance(D d, const RationalCurve& curve, hn::Vec<D> u, hn::Vec<D> v, hn::Vec<D> t,
+                                     hn::Mask<D>& plain) {
+  FourChains<N, D> f(d, curve);
+  f.de_casteljau(N, t);
+  return plain_length(hn::Sub(hn::Div(f.a[0], f.b[0]), u), hn::Sub(hn::Div(f.c[0], f.e[0]), v), plain);
+}
+
+// The engine's refine_parameter(..., stay_on_segment = true), one lane per point, each lane through
+// exactly the scalar code's sequence of steps (the masks only say which lanes are still at which
+// point of it):
+//   iteration: jet at t; d = |P(t) - P0|; Newton step -f/f' (Gauss-Newton where f' <= 0), capped
+//   at max_step; a step of at most trusted_step is taken as it is (converged when it moves t by at
+//   most 4 eps max(1, |t|)); a larger one is halved until the distance does not increase (at most
+//   max_halvings times; if none is found, or it does not move t, the iteration stops).
+template <int N, class D>
+HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const NewtonSettings& settings,
+                                        std::size_t first, std::size_t lanes, const double* HWY_RESTRICT u_in,
+                                        const double* HWY_RESTRICT v_in, double* HWY_RESTRICT t_inout,
+                                        double* HWY_RESTRICT distance_out) {
+  using V = hn::Vec<D>;
+  using M = hn::Mask<D>;
+  constexpr std::size_t L = hn::MaxLanes(D());
+  HWY_ALIGN double buffer[L];
+  auto load = [&](const double* p) {  // the group's lanes, padded with 0 (a harmless start of 0)
+    for (std::size_t l = 0; l < L; ++l) buffer[l] = l < lanes ? p[first + l] : 0.0;
+    return hn::Load(d, buffer);
+  };
+  const V u = load(u_in), v = load(v_in), t0 = load(t_inout);
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
+  const V trusted = hn::Set(d, settings.trusted_step), max_step = hn::Set(d, settings.max_step);
+  const V four_eps = hn::Set(d, 4 * std::numeric_limits<double>::epsilon());
+  auto converged = [&](V moved, V t) { return hn::Le(moved, hn::Mul(four_eps, hn::Max(one, hn::Abs(t)))); };
+
+  M active = hn::And(hn::Ge(t0, zero), hn::Le(t0, one));  // false for NaN; in [0,1] clamp(t0) = t0
+  M unsettled = hn::Not(active);                          // given back to the scalar code
+  M final_distance = hn::FirstN(d, 0);                    // finished, distance to be measured at t
+  V t = hn::IfThenElse(active, t0, zero);
+  V dist = zero;     // |P(t) - P0| at the current t while current
+  M current = hn::FirstN(d, 0);
+  V result = zero;   // the distance a finished lane reports
+  auto finish = [&](M lanes_done, V value) {
+    result = hn::IfThenElse(lanes_done, value, result);
+    active = hn::AndNot(lanes_done, active);
+  };
+  auto give_back = [&](M lanes) {
+    unsettled = hn::Or(unsettled, lanes);
+    active = hn::AndNot(lanes, active);
+  };
+
+  for (int iteration = 0; iteration < settings.max_iterations && !hn::AllFalse(d, active); ++iteration) {
+    FourChains<N, D> f(d, curve);
+    f.de_casteljau(N - 2, t);
+    const V b2_a = N >= 2 ? f.a[2] : zero, b2_b = N >= 2 ? f.b[2] : zero;
+    const V b2_c = N >= 2 ? f.c[2] : zero, b2_e = N >= 2 ? f.e[2] : zero;
+    const Jet1<N, V> xn(t, f.a[0], f.a[1], b2_a), xd(t, f.b[0], f.b[1], b2_b);
+    const Jet1<N, V> yn(t, f.c[0], f.c[1], b2_c), yd(t, f.e[0], f.e[1], b2_e);
+    V x, dx, ddx, y, dy, ddy;
+    quotient_jet(xn, xd, x, dx, ddx);
+    quotient_jet(yn, yd, y, dy, ddy);
+    const V ex = hn::Sub(x, u), ey = hn::Sub(y, v);
+    M plain;
+    const V h = plain_length(ex, ey, plain);
+    give_back(hn::And(active, hn::Not(hn::And(plain, hn::IsFinite(h)))));  // the scalar code stops on inf/NaN
+    dist = hn::IfThenElse(active, h, dist);
+    current = hn::Or(current, active);
+
+    const V g1 = hn::Add(hn::Mul(ex, dx), hn::Mul(ey, dy));
+    const V speed2 = hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy));
+    V g2 = hn::Add(hn::Add(speed2, hn::Mul(ex, ddx)), hn::Mul(ey, ddy));
+    g2 = hn::IfThenElse(hn::Gt(g2, zero), g2, speed2);  // Gauss-Newton where the distance is concave
+    finish(hn::And(active, hn::Not(hn::And(hn::Gt(g2, zero), hn::IsFinite(g1)))), dist);
+    V step = hn::Min(hn::Max(hn::Div(hn::Neg(g1), g2), hn::Neg(max_step)), max_step);
+
+    // Small steps: taken as Newton gives them.
+    const M small = hn::And(active, hn::Le(hn::Abs(step), trusted));
+    {
+      const V next = hn::Min(hn::Max(hn::Add(t, step), zero), one);
+      const V moved = hn::Abs(hn::Sub(next, t));
+      t = hn::IfThenElse(small, next, t);
+      current = hn::AndNot(small, current);
+      const M done = hn::And(small, converged(moved, t));
+      final_distance = hn::Or(final_distance, done);
+      active = hn::AndNot(done, active);
+    }
+
+    // Larger steps: halved until the distance does not increase.
+    M search = hn::AndNot(small, active);
+    M accepted = hn::FirstN(d, 0);
+    const M searched = search;
+    for (int halving = 0; halving < settings.max_halvings && !hn::AllFalse(d, search); ++halving) {
+      const V next = hn::Min(hn::Max(hn::Add(t, step), zero), one);
+      M next_plain;
+      const V dn = point_distance<N>(d, curve, u, v, next, next_plain);
+      const M bad = hn::And(search, hn::Not(next_plain));
+      give_back(bad);
+      search = hn::AndNot(bad, search);
+      const M ok = hn::And(search, hn::Le(dn, dist));
+      accepted = hn::Or(accepted, hn::And(ok, hn::Ne(next, t)));
+      const V moved = hn::Abs(hn::Sub(next, t));
+      t = hn::IfThenElse(ok, next, t);
+      dist = hn::IfThenElse(ok, dn, dist);
+      finish(hn::And(ok, converged(moved, t)), dist);
+      search = hn::AndNot(ok, search);
+      step = hn::IfThenElse(search, hn::Mul(step, half), step);
+    }
+    finish(hn::And(hn::And(searched, active), hn::Not(accepted)), dist);  // no descent found: stop here
+  }
+  // Out of iterations: the distance at hand, or measured at the last t.
+  finish(hn::And(active, current), dist);
+  final_distance = hn::Or(final_distance, active);
+
+  if (!hn::AllFalse(d, final_distance)) {
+    M plain;
+    const V h = point_distance<N>(d, curve, u, v, t, plain);
+    unsettled = hn::Or(unsettled, hn::And(final_distance, hn::Not(plain)));
+    result = hn::IfThenElse(final_distance, h, result);
+  }
+
+  HWY_ALIGN double t_lanes[L], result_lanes[L];
+  hn::Store(t, d, t_lanes);
+  hn::Store(hn::IfThenElse(unsettled, hn::Set(d, std::numeric_limits<double>::quiet_NaN()), result), d,
+            result_lanes);
+  for (std::size_t l = 0; l < lanes; ++l) {
+    distance_out[first + l] = result_lanes[l];
+    if (!std::isnan(result_lanes[l])) t_inout[first + l] = t_lanes[l];
+  }
+}
+
+template <int N>
+void rational_newton_fixed(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
+                           const double* u, const double* v, double* t, double* distance) {
+  const hn::ScalableTag<double> d;
+  constexpr std::size_t L = hn::MaxLanes(hn::ScalableTag<double>());
+  for (std::size_t first = 0; first < count; first += L)
+    rational_newton_group<N>(d, curve, settings, first, std::min(L, count - first), u, v, t, distance);
+}
+
+void rational_newton_batch(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
+                           const double* u, const double* v, double* t, double* distance) {
+  for (std::size_t l = 0; l < count; ++l) distance[l] = std::numeric_limits<double>::quiet_NaN();
+  dispatch_size(curve.degree, [&](auto size) {
+    rational_newton_fixed<decltype(size)::value>(curve, settings, count, u, v, t, distance);
+  });
+}
+
+}  // namespace bezinv::kernels::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // BEZINV_KERNELS_BATCH_RATIONAL_NEWTON_INL_H_

@@ -1,0 +1,72 @@
+// engine/src/refine.cpp's safeguarded Newton and the kernels' lane-batched copy of it
+// (Implementation::rational_newton) must give the same bits: the fast path refines with the kernel,
+// the SVD path with refine_parameter, and tests/engine/invert_property_test.cpp relies on both
+// agreeing. Starts range from the quadratic region to anywhere on the segment (line searches,
+// clamping at the ends, Gauss-Newton where the distance is concave), points from on the curve to
+// far off it, one and separate denominators. The accuracy of the refinement itself is checked
+// against constructed points in tests/kernels/rational_newton_test.cpp.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "bezinv/kernels/batch.hpp"
+#include "bezinv/plan.hpp"
+#include "bezinv/tolerances.hpp"
+#include "refine.hpp"
+
+namespace bezinv {
+namespace {
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+TEST(Refine, KernelGivesTheScalarRefinementsBits) {
+  const kernels::NewtonSettings settings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep, kNewtonMaxHalvings};
+  for (const kernels::Implementation* implementation : kernels::available_implementations()) {
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1.0, 1.0), weight(0.5, 2.0);
+    int compared = 0, line_searches = 0;
+    for (int n = 1; n <= 24; ++n)
+      for (bool common : {true, false}) {
+        InversionPlan plan;  // refine_parameter reads only the degree and the four polynomials
+        plan.degree = n;
+        for (int i = 0; i <= n; ++i) {
+          const double w = weight(rng), w2 = common ? w : weight(rng);
+          plan.x_num.push_back(w * coordinate(rng));
+          plan.x_den.push_back(w);
+          plan.y_num.push_back(w2 * coordinate(rng));
+          plan.y_den.push_back(w2);
+        }
+        std::vector<double> u, v, t, distance;
+        for (int k = 0; k < 37; ++k) {
+          const double t_true = unit(rng);
+          const auto p = plan.normalized_point(t_true);
+          const double noise = k % 3 == 0 ? 0.0 : std::pow(10.0, -1.0 - k % 9);
+          u.push_back(p[0] + noise * coordinate(rng));
+          v.push_back(p[1] + noise * coordinate(rng));
+          // Near the answer, anywhere, or exactly at an end.
+          t.push_back(k % 5 == 0 ? unit(rng) : k % 7 == 0 ? static_cast<double>(k % 2) : t_true + 1e-3 * coordinate(rng));
+          t.back() = std::clamp(t.back(), 0.0, 1.0);
+        }
+        std::vector<double> start = t;
+        distance.assign(t.size(), 0.0);
+        const kernels::RationalCurve curve{n, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(), plan.y_den.data()};
+        implementation->rational_newton(curve, settings, t.size(), u.data(), v.data(), t.data(), distance.data());
+        for (std::size_t l = 0; l < t.size(); ++l) {
+          SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " lane " + std::to_string(l));
+          const detail::Refined r = detail::refine_parameter(plan, u[l], v[l], start[l], true);
+          ASSERT_FALSE(std::isnan(distance[l]));  // every start is in [0, 1], every distance plain
+          EXPECT_TRUE(same_bits(t[l], r.t)) << t[l] << " vs " << r.t;
+          EXPECT_TRUE(same_bits(distance[l], r.distance)) << distance[l] << " vs " << r.distance;
+          ++compared;
+          if (std::abs(start[l] - r.t) > kNewtonTrustedStep) ++line_searches;
+        }
+      }
+    EXPECT_EQ(compared, 24 * 2 * 37);
+    EXPECT_GE(line_searches, 300);  // the line search and clamping really were exercised
+  }
+}
+
+}  // namespace
+}  // namespace bezinv

@@ -1,0 +1,203 @@
+// The lane-batched nearest-point Newton (Implementation::rational_newton), every available
+// implementation, degrees 1..24, batch sizes around the vector widths. Expected parameters come
+// from construction: points made exactly (GMP) at a known t, on the curve, along its normal, or
+// past an end along its tangent. tests/engine/refine_test.cpp checks it against the engine's
+// scalar refinement bit for bit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "bezinv/kernels/batch.hpp"
+#include "support/exact.hpp"
+#include "support/measure.hpp"
+
+namespace bezinv::kernels {
+namespace {
+
+using test_support::sci;
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The engine's settings (engine/include/bezinv/tolerances.hpp).
+constexpr NewtonSettings kSettings{60, 0.125, 1e-6, 40};
+
+// A random rational Bezier curve: control points in [-1, 1]^2, weights in [0.5, 2], one denominator.
+struct TestCurve {
+  std::vector<double> x_num, x_den, y_num, y_den;
+  exact::RationalCurve exact;
+  RationalCurve view() const { return {static_cast<int>(x_num.size()) - 1, x_num.data(), x_den.data(), y_num.data(), y_den.data()}; }
+};
+
+TestCurve random_curve(int n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0), weight(0.5, 2.0);
+  TestCurve c;
+  for (int i = 0; i <= n; ++i) {
+    const double w = weight(rng);
+    c.x_num.push_back(w * coordinate(rng));
+    c.y_num.push_back(w * coordinate(rng));
+    c.x_den.push_back(w);
+  }
+  c.y_den = c.x_den;
+  c.exact = {exact::to_exact(c.x_num), exact::to_exact(c.x_den), exact::to_exact(c.y_num), exact::to_exact(c.y_den)};
+  return c;
+}
+
+struct Exact {
+  double x, y, dx, dy;  // P(t) and P'(t), each the double nearest to the exact value
+};
+Exact at(const TestCurve& c, double t) {
+  const auto p = c.exact.point(t);
+  const auto d = c.exact.tangent(t);
+  return {exact::nearest_double(p[0]), exact::nearest_double(p[1]), exact::nearest_double(d[0]),
+          exact::nearest_double(d[1])};
+}
+
+struct Lanes {
+  std::vector<double> u, v, t, distance;
+  void add(double u0, double v0, double t0) {
+    u.push_back(u0);
+    v.push_back(v0);
+    t.push_back(t0);
+    distance.push_back(-1.0);  // overwritten by every lane
+  }
+  void run(const Implementation& implementation, const TestCurve& c) {
+    implementation.rational_newton(c.view(), kSettings, t.size(), u.data(), v.data(), t.data(), distance.data());
+  }
+};
+
+// On-curve points P(t_true), made exactly and rounded: Newton from t_true + offset (offsets from
+// the quadratic region to 0.02, where the first steps need the line search) ends at t_true, with
+// distance at rounding level. Bound: the rounded point moves the nearest parameter by
+// ~eps / |P'|, and speeds here are >= ~0.05, so 1e-13 has room; measured worst 5e-15.
+TEST(RationalNewton, OnCurvePointsFromNearbyStarts) {
+  for (const Implementation* implementation : available_implementations()) {
+    std::mt19937_64 rng(20261128);
+    double worst_t = 0, worst_distance = 0;
+    for (int n = 1; n <= 24; ++n) {
+      const TestCurve c = random_curve(n, rng);
+      std::uniform_real_distribution<double> parameter(0.05, 0.95);
+      Lanes lanes;
+      std::vector<double> truth;
+      for (int k = 0; k < 19; ++k) {  // 19: not a multiple of any vector width
+        const double t_true = parameter(rng);
+        const Exact p = at(c, t_true);
+        const double offset = (k % 2 ? 1 : -1) * std::pow(10.0, -2.0 - (k % 8));
+        lanes.add(p.x, p.y, t_true + offset);
+        truth.push_back(t_true);
+      }
+      lanes.run(*implementation, c);
+      for (std::size_t l = 0; l < truth.size(); ++l) {
+        SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " lane " + std::to_string(l));
+        ASSERT_FALSE(std::isnan(lanes.distance[l]));
+        EXPECT_NEAR(lanes.t[l], truth[l], 1e-13);
+        EXPECT_LE(lanes.distance[l], 1e-14);
+        worst_t = std::max(worst_t, std::abs(lanes.t[l] - truth[l]));
+        worst_distance = std::max(worst_distance, lanes.distance[l]);
+      }
+    }
+    std::printf("%s: worst |t - t_true| %s, worst distance %s\n", std::string(implementation->name).c_str(),
+                sci(worst_t).c_str(), sci(worst_distance).c_str());
+  }
+}
+
+// Points off the curve along its normal at t_star: P(t_star) + delta N, with delta below half the
+// radius of curvature, so t_star is the nearest parameter nearby and the distance is |delta|.
+TEST(RationalNewton, OffCurvePointsAlongTheNormal) {
+  for (const Implementation* implementation : available_implementations()) {
+    std::mt19937_64 rng(7);
+    int checked = 0;
+    for (int n = 2; n <= 24; ++n) {
+      const TestCurve c = random_curve(n, rng);
+      std::uniform_real_distribution<double> parameter(0.1, 0.9);
+      Lanes lanes;
+      std::vector<double> truth, offset;
+      for (int k = 0; k < 12; ++k) {
+        const double t_star = parameter(rng);
+        const Exact p = at(c, t_star);
+        const double speed = std::hypot(p.dx, p.dy);
+        const double delta = (k % 2 ? 1e-3 : -1e-4) * (1 + k);
+        // Curvature from a central difference of the unit tangent (only to choose delta safely).
+        const Exact a = at(c, t_star - 1e-5), b = at(c, t_star + 1e-5);
+        const double turn = std::abs(std::atan2(a.dx * b.dy - a.dy * b.dx, a.dx * b.dx + a.dy * b.dy));
+        const double curvature = turn / (2e-5 * speed);
+        if (!(std::abs(delta) * curvature < 0.5)) continue;
+        lanes.add(p.x - delta * p.dy / speed, p.y + delta * p.dx / speed, t_star + 1e-4);
+        truth.push_back(t_star);
+        offset.push_back(std::abs(delta));
+      }
+      lanes.run(*implementation, c);
+      for (std::size_t l = 0; l < truth.size(); ++l) {
+        SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " lane " + std::to_string(l));
+        ASSERT_FALSE(std::isnan(lanes.distance[l]));
+        // Off the curve f(t) = 0 still pins t to ~eps / (|P'|^2 (1 - delta kappa)); the point's own
+        // rounding (~1e-16) moves t_star by as much.
+        EXPECT_NEAR(lanes.t[l], truth[l], 1e-12);
+        EXPECT_NEAR(lanes.distance[l], offset[l], 1e-14);
+        ++checked;
+      }
+    }
+    EXPECT_GE(checked, 150);  // the curvature filter must leave most of the 276 points
+  }
+}
+
+// A point past the end t = 1 along the tangent there: the nearest point of the segment is the end
+// itself, and the iteration must stop there exactly (clamped), at distance |delta|.
+TEST(RationalNewton, ClampsAtTheEndsOfTheSegment) {
+  for (const Implementation* implementation : available_implementations()) {
+    std::mt19937_64 rng(11);
+    for (int n = 2; n <= 12; ++n) {
+      const TestCurve c = random_curve(n, rng);
+      Lanes lanes;
+      for (double end : {0.0, 1.0}) {
+        const Exact p = at(c, end);
+        const double speed = std::hypot(p.dx, p.dy), sign = end == 1.0 ? 1.0 : -1.0, delta = 1e-3;
+        lanes.add(p.x + sign * delta * p.dx / speed, p.y + sign * delta * p.dy / speed, end == 1.0 ? 1.0 - 1e-3 : 1e-3);
+      }
+      lanes.run(*implementation, c);
+      SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n));
+      EXPECT_EQ(lanes.t[0], 0.0);
+      EXPECT_EQ(lanes.t[1], 1.0);
+      EXPECT_NEAR(lanes.distance[0], 1e-3, 1e-14);
+      EXPECT_NEAR(lanes.distance[1], 1e-3, 1e-14);
+    }
+  }
+}
+
+// Starts the kernel does not take (NaN, outside [0, 1], infinite) come back as given, with distance
+// NaN; lanes around them are settled as usual; count 0 touches nothing.
+TEST(RationalNewton, LeavesUnusableStartsToTheCaller) {
+  for (const Implementation* implementation : available_implementations()) {
+    std::mt19937_64 rng(3);
+    const TestCurve c = random_curve(5, rng);
+    Lanes lanes;
+    const double starts[] = {0.3, kNaN, -0.25, 0.6, 1.5, std::numeric_limits<double>::infinity(), 0.8};
+    std::vector<double> truth;
+    for (double s : starts) {
+      const double t_true = std::isfinite(s) && s >= 0 && s <= 1 ? s + 1e-7 : 0.5;
+      const Exact p = at(c, t_true);
+      lanes.add(p.x, p.y, s);
+      truth.push_back(t_true);
+    }
+    lanes.run(*implementation, c);
+    SCOPED_TRACE(std::string(implementation->name));
+    for (std::size_t l = 0; l < truth.size(); ++l) {
+      const bool usable = std::isfinite(starts[l]) && starts[l] >= 0 && starts[l] <= 1;
+      if (usable) {
+        EXPECT_NEAR(lanes.t[l], truth[l], 1e-13) << l;
+        EXPECT_LE(lanes.distance[l], 1e-14) << l;
+      } else {
+        EXPECT_TRUE(std::isnan(lanes.distance[l])) << l;
+        EXPECT_TRUE(std::isnan(starts[l]) ? std::isnan(lanes.t[l]) : lanes.t[l] == starts[l]) << l;
+      }
+    }
+    double t = 0.5, distance = 7.0;
+    implementation->rational_newton(c.view(), kSettings, 0, &t, &t, &t, &distance);
+    EXPECT_EQ(t, 0.5);
+    EXPECT_EQ(distance, 7.0);
+  }
+}
+
+}  // namespace
+}  // namespace bezinv::kernels
