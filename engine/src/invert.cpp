@@ -436,13 +436,10 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
     kernels::active_implementation().null_vector(n, count, stride, w.B.data(), w.z.data(), w.defect.data(),
                                                  w.estimate.data(), w.second.data());
     clock.lap(&StageSeconds::kernel);
-    for (std::size_t l = 0; l < count; ++l) {
-      w.t_algebraic[l] = PointResult::nan;
-      if (!w.active[l] || !(w.defect[l] <= kFastPathMaxDefect) || !(w.estimate[stride + l] >= kFastPathMinGap)) continue;
-      std::array<double, kMaxDegree> z;
-      for (int r = 0; r < n; ++r) z[r] = w.z[r * stride + l];
-      w.t_algebraic[l] = parameter_from_null_vector(std::span<const double>(z.data(), n));
-    }
+    kernels::active_implementation().bernstein_parameter(n, count, stride, w.z.data(), w.t_algebraic.data());
+    for (std::size_t l = 0; l < count; ++l)
+      if (!w.active[l] || !(w.defect[l] <= kFastPathMaxDefect) || !(w.estimate[stride + l] >= kFastPathMinGap))
+        w.t_algebraic[l] = PointResult::nan;
     clock.lap(&StageSeconds::read_out);
     // Refinement, lane-batched: the kernel runs refine.cpp's safeguarded Newton for every lane whose
     // t_algebraic is in [0,1] and gives settle()'s numbers bit for bit. It leaves the rest to
@@ -522,15 +519,14 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
 
   // 3. read-out: the right singular vector of the smallest singular value (degree 1: B is 1 x 1
   // with no null vector to read; p and q are linear, see linear_parameter).
+  if (n >= 2 && m > 0)
+    kernels::active_implementation().bernstein_parameter(n, m, stride, w.V.data() + (n - 1) * n * stride,
+                                                         w.t_algebraic.data());
   for (std::size_t k = 0; k < m; ++k) {
-    w.t_algebraic[k] = PointResult::nan;
-    if (n == 1) {
+    if (n == 1)
       w.t_algebraic[k] = linear_parameter(point_polynomials(plan, w.u[k], w.v[k]));
-    } else if (w.sigma[k] > 0 && std::isfinite(w.sigma[k])) {
-      std::array<double, kMaxDegree> z;
-      for (int r = 0; r < n; ++r) z[r] = w.V[((n - 1) * n + r) * stride + k];
-      w.t_algebraic[k] = parameter_from_null_vector(std::span<const double>(z.data(), n));
-    }
+    else if (!(w.sigma[k] > 0 && std::isfinite(w.sigma[k])))
+      w.t_algebraic[k] = PointResult::nan;
   }
   clock.lap(&StageSeconds::read_out);
 

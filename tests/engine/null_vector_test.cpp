@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <array>
 #include <cmath>
 #include <numeric>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include "bezinv/datasets/random_numbers.hpp"
+#include "bezinv/kernels/batch.hpp"
 #include "bezinv/null_vector.hpp"
 #include "support/exact.hpp"
 #include "support/measure.hpp"
@@ -177,6 +180,45 @@ TEST(ParametersFromNullSpace, RecoversBothParametersFromRotatedBases) {
     }
   }
   RecordProperty("worst_absolute", sci(worst));
+}
+
+}  // namespace
+}  // namespace bezinv
+
+namespace bezinv {
+namespace {
+
+// The kernels' lane-batched read-out (kernels::Implementation::bernstein_parameter) must give
+// parameter_from_null_vector's bits: the fast path reads t with it and the SVD path's tests rely
+// on both agreeing. Vectors with ties, zeros, NaN, and random signs and sizes.
+TEST(ParameterFromNullVector, KernelGivesTheScalarBits) {
+  for (const kernels::Implementation* implementation : kernels::available_implementations()) {
+    std::mt19937_64 rng(17);
+    for (int n = 2; n <= kernels::kMaxBatchSize; ++n) {
+      const std::size_t count = 45, stride = kernels::batch_stride(count);
+      std::vector<double> z(n * stride), t(count);
+      for (std::size_t l = 0; l < count; ++l)
+        for (int i = 0; i < n; ++i) {
+          double value = datasets::uniform(rng, -1.0, 1.0) * std::pow(10.0, static_cast<double>(rng() % 7) - 3.0);
+          if (l % 9 == 1) value = i % 3 == 0 ? 0.5 : -0.5;                       // ties
+          if (l % 9 == 2 && i % 2) value = 0.0;                                  // zeros
+          if (l % 9 == 3 && i == static_cast<int>(l) % n) value = std::nan("");  // NaN somewhere
+          if (l % 9 == 4) value = 0.0;                                           // all zero: NaN
+          z[i * stride + l] = value;
+        }
+      implementation->bernstein_parameter(n, count, stride, z.data(), t.data());
+      for (std::size_t l = 0; l < count; ++l) {
+        std::vector<double> lane(n);
+        for (int i = 0; i < n; ++i) lane[i] = z[i * stride + l];
+        const double expected = parameter_from_null_vector(lane);
+        SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " lane " + std::to_string(l));
+        if (std::isnan(expected))
+          EXPECT_TRUE(std::isnan(t[l]));
+        else
+          EXPECT_EQ(std::bit_cast<std::uint64_t>(t[l]), std::bit_cast<std::uint64_t>(expected)) << t[l] << " vs " << expected;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -33,8 +33,11 @@ struct Table {
       const auto svd = batch::symmetric_svd_kernel(kCandidates[i].target);
       const auto null = batch::null_vector_kernel(kCandidates[i].target);
       const auto newton = batch::rational_newton_kernel(kCandidates[i].target);
-      if (svd == nullptr || null == nullptr || newton == nullptr || (supported & kCandidates[i].target) == 0) continue;
-      storage[count] = Implementation{kCandidates[i].name, svd, null, newton};
+      const auto parameter = batch::bernstein_parameter_kernel(kCandidates[i].target);
+      if (svd == nullptr || null == nullptr || newton == nullptr || parameter == nullptr ||
+          (supported & kCandidates[i].target) == 0)
+        continue;
+      storage[count] = Implementation{kCandidates[i].name, svd, null, newton, parameter};
       available[count] = &storage[count];
       ++count;
     }

@@ -75,6 +75,13 @@ struct Implementation {
   // t and gets distance[l] = NaN: the caller runs the scalar code for it. Arrays have `count` entries.
   void (*rational_newton)(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                           const double* u, const double* v, double* t, double* distance);
+
+  // The paper's read-out (Marco & Martinez Sect. 3) for every lane's vector z (n >= 2 components,
+  // laid out as null_vector writes it): for z along the Bernstein basis (beta_0(t), ...,
+  // beta_{n-1}(t)) of degree n-1, consecutive components give t = i z_i / (i z_i + (n-i) z_{i-1}),
+  // taken at the largest component and the larger of its neighbours. NaN where that denominator is
+  // 0. Writes t[0..count); the engine's parameter_from_null_vector gives the same bits.
+  void (*bernstein_parameter)(int n, std::size_t count, std::size_t stride, const double* z, double* t);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the
