@@ -53,6 +53,9 @@ namespace {
 
 using Coefficients = std::array<double, kMaxDegree + 1>;
 
+// Points per batch (see "The pipeline" below).
+constexpr std::size_t kBatchLanes = 64;
+
 // p = X_num - u0 X_den and q = Y_num - v0 Y_den at the plan's degree.
 struct PointPolynomials {
   int n;
@@ -79,6 +82,26 @@ bool degree_drops(const InversionPlan& plan, const PointPolynomials& pq, double 
   const double lead_q = plan.lead_y_num - v0 * plan.lead_y_den;
   return std::abs(lead_p) <= kDegreeDropRatio * power_leading_bound(pq.p_span()) &&
          std::abs(lead_q) <= kDegreeDropRatio * power_leading_bound(pq.q_span());
+}
+
+// degree_drops for a whole batch at once (lanes innermost, so the loops vectorize); the same
+// operations in the same order per lane, so the same answers. drops[l] = 1 where p and q both drop.
+void degree_drops_batch(const InversionPlan& plan, const double* u, const double* v, std::size_t count,
+                        std::uint8_t* drops) {
+  std::array<double, kBatchLanes> bound_p{}, bound_q{};
+  for (int i = 0; i <= plan.degree; ++i) {
+    const double c = binomial(plan.degree, i);
+    const double xn = plan.x_num[i], xd = plan.x_den[i], yn = plan.y_num[i], yd = plan.y_den[i];
+    for (std::size_t l = 0; l < count; ++l) {
+      bound_p[l] += c * std::abs(xn - u[l] * xd);
+      bound_q[l] += c * std::abs(yn - v[l] * yd);
+    }
+  }
+  for (std::size_t l = 0; l < count; ++l) {
+    const double lead_p = plan.lead_x_num - u[l] * plan.lead_x_den;
+    const double lead_q = plan.lead_y_num - v[l] * plan.lead_y_den;
+    drops[l] = std::abs(lead_p) <= kDegreeDropRatio * bound_p[l] && std::abs(lead_q) <= kDegreeDropRatio * bound_q[l];
+  }
 }
 
 // p written at its true degree, in place: reduce while the leading power coefficient vanishes.
@@ -180,8 +203,6 @@ Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algeb
 //                run only for the lanes that need them
 // invert_point is a batch of one, so there is one code path.
 
-constexpr std::size_t kBatchLanes = 64;
-
 // refine.cpp's safeguards, for the lane-batched refinement.
 constexpr kernels::NewtonSettings kNewtonSettings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep,
                                                   kNewtonMaxHalvings};
@@ -198,7 +219,7 @@ struct BatchWorkspace {
   // The fast path's lane-batched refinement: t and |P(t) - P0| (NaN where it left the lane to settle()).
   std::array<double, kBatchLanes> t_refined, distance;
   // The fast path's second-parameter check: lanes waiting for it, and their roots (two at most).
-  std::array<std::uint8_t, kBatchLanes> pending;
+  std::array<std::uint8_t, kBatchLanes> pending, drops;
   std::array<double, 2 * kBatchLanes> root_t, root_u, root_v, root_distance;
   std::array<std::uint8_t, 2 * kBatchLanes> root_lane;
   std::array<Candidate, kBatchLanes> main;
@@ -408,10 +429,15 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
       const double b0 = plan.B0[i], bx = plan.Bx[i], by = plan.By[i], bxy = plan.Bxy[i];
       for (std::size_t l = 0; l < count; ++l) row[l] = b0 - w.u[l] * bx - w.v[l] * by + (w.u[l] * w.v[l]) * bxy;
     }
+    // An entry that overflowed makes its lane's sum of entry * 0 NaN (inf * 0): one pass over the
+    // rows, lanes innermost, so it vectorizes as the loop above does.
+    std::array<double, kBatchLanes> poison{};
+    for (int i = 0; i < nn; ++i) {
+      const double* row = w.B.data() + i * stride;
+      for (std::size_t l = 0; l < count; ++l) poison[l] += row[l] * 0.0;
+    }
     for (std::size_t l = 0; l < count; ++l) {
-      bool finite = w.active[l] != 0;
-      for (int i = 0; i < nn && finite; ++i) finite = std::isfinite(w.B[i * stride + l]);
-      if (w.active[l] && !finite) {
+      if (w.active[l] && !(poison[l] == 0.0)) {
         results[l].status = Status::failed;
         results[l].reason = "point so far from the curve that the Bezout matrix overflows";
         w.active[l] = 0;
@@ -459,6 +485,7 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
       r.sigma_next = w.estimate[stride + l];
       w.active[l] = 0;
     };
+    degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
     std::size_t roots = 0;
     for (std::size_t l = 0; l < count; ++l) {
       w.pending[l] = 0;
@@ -474,7 +501,7 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
       } else {
         c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
       }
-      if (!c.on_segment || degree_drops(plan, point_polynomials(plan, w.u[l], w.v[l]), w.u[l], w.v[l])) continue;
+      if (!c.on_segment || w.drops[l]) continue;
       if (w.estimate[stride + l] >= kFastPathGapRatio || n < 3) {
         answer(l, c);
         continue;
