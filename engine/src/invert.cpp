@@ -203,6 +203,9 @@ Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algeb
 //                run only for the lanes that need them
 // invert_point is a batch of one, so there is one code path.
 
+// A root of the second-parameter check this close to the lane's t is "near" (see queue_second_parameters).
+constexpr double kNearRoot = 1e-3;
+
 // refine.cpp's safeguards, for the lane-batched refinement.
 constexpr kernels::NewtonSettings kNewtonSettings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep,
                                                   kNewtonMaxHalvings};
@@ -364,14 +367,17 @@ void decide(const InversionPlan& plan, double u0, double v0, const Candidate& ma
 
 // The fast path's look for a second parameter (as decide() does with the SVD's two last singular
 // vectors): the parameters whose Bernstein vector lies in span{z, second} (lane l's kernel
-// vectors) are queued at w.root_*[first...], for refinement along the segment. Returns how many.
-//
+// vectors) are queued in w.root_*, for refinement along the segment.
 // Only a parameter on the segment matters here, so every root is refined along the segment (from
 // the nearer end if it lies outside), which is the part of settle() that can end on the segment.
 // settle()'s walk along the extension from a root far outside took most of the time of this check
 // (with it the check cost 57% of the pipeline at degree 8, measured); the SVD path still does
 // both, and tests/engine/invert_property_test.cpp checks that the two paths give the same statuses.
-std::size_t queue_second_parameters(int n, BatchWorkspace& w, std::size_t l, std::size_t first) {
+//
+// Roots near the lane's t (which refine back to t in a step or two) are queued from the front,
+// the others (which walk, with line searches) from the back, so that the kernel's SIMD groups hold
+// lanes of similar work.
+void queue_second_parameters(int n, BatchWorkspace& w, std::size_t l, double t, std::size_t& near, std::size_t& far) {
   std::array<double, kMaxDegree> z, second;
   for (int r = 0; r < n; ++r) {
     z[r] = w.z[r * kBatchLanes + l];
@@ -381,12 +387,13 @@ std::size_t queue_second_parameters(int n, BatchWorkspace& w, std::size_t l, std
   const int count = parameters_from_null_space(std::span<const double>(z.data(), n),
                                                std::span<const double>(second.data(), n), roots);
   for (int i = 0; i < count; ++i) {
-    w.root_t[first + i] = std::clamp(roots[i], 0.0, 1.0);  // NaN stays NaN: not settled, refined to NaN
-    w.root_u[first + i] = w.u[l];
-    w.root_v[first + i] = w.v[l];
-    w.root_lane[first + i] = static_cast<std::uint8_t>(l);
+    const double start = std::clamp(roots[i], 0.0, 1.0);  // NaN stays NaN: not settled, refined to NaN
+    const std::size_t k = std::abs(start - t) <= kNearRoot ? near++ : w.root_t.size() - 1 - far++;
+    w.root_t[k] = start;
+    w.root_u[k] = w.u[l];
+    w.root_v[k] = w.v[l];
+    w.root_lane[k] = static_cast<std::uint8_t>(l);
   }
-  return static_cast<std::size_t>(count);
 }
 
 // One batch (count <= kBatchLanes) of points of one curve through the five stages.
@@ -486,7 +493,7 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
       w.active[l] = 0;
     };
     degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
-    std::size_t roots = 0;
+    std::size_t near = 0, far = 0;  // roots queued at the front and at the back of w.root_*
     for (std::size_t l = 0; l < count; ++l) {
       w.pending[l] = 0;
       if (!std::isfinite(w.t_algebraic[l])) continue;
@@ -506,24 +513,28 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
         answer(l, c);
         continue;
       }
-      roots += queue_second_parameters(n, w, l, roots);
+      queue_second_parameters(n, w, l, c.t, near, far);
       w.pending[l] = 1;
     }
     // The second-parameter check, for the queued roots at once: a lane is answered here unless one
     // of its roots refines onto the segment, within the tolerance, at a parameter distinct from its t.
-    kernels::active_implementation().rational_newton(curve, kNewtonSettings, roots, w.root_u.data(),
-                                                     w.root_v.data(), w.root_t.data(), w.root_distance.data());
-    for (std::size_t k = 0; k < roots; ++k) {
+    const std::size_t slots = w.root_t.size();
+    for (const std::size_t first : {std::size_t{0}, slots - far}) {
+      const std::size_t size = first == 0 ? near : far;
+      kernels::active_implementation().rational_newton(curve, kNewtonSettings, size, w.root_u.data() + first,
+                                                       w.root_v.data() + first, w.root_t.data() + first,
+                                                       w.root_distance.data() + first);
+    }
+    for (std::size_t k = 0; k < slots; ++k) {
+      if (k == near) k = slots - far;
+      if (k == slots) break;
       const std::size_t l = w.root_lane[k];
       detail::Refined r{w.root_t[k], w.root_distance[k]};
       if (std::isnan(r.distance)) r = detail::refine_parameter(plan, w.root_u[k], w.root_v[k], w.root_t[k], true);
       if (r.distance <= tolerance && std::abs(r.t - w.main[l].t) > kDistinctParameterGap) w.pending[l] = 0;
     }
-    for (std::size_t k = 0; k < roots; ++k) {
-      const std::size_t l = w.root_lane[k];
+    for (std::size_t l = 0; l < count; ++l)
       if (w.pending[l]) answer(l, w.main[l]);
-      w.pending[l] = 0;  // answered once
-    }
     clock.lap(&StageSeconds::refine);
   }
 
