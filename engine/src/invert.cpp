@@ -407,28 +407,28 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
 
   // 1. form B. Lanes that are already answered (bad input, unusable curve) are given B = identity
   // so the kernel sees only finite, harmless matrices.
+  for (std::size_t l = 0; l < count; ++l) {  // the arithmetic alone, so that it vectorizes
+    const auto uv = plan.normalize(points[l].x, points[l].y);
+    w.u[l] = uv[0];
+    w.v[l] = uv[1];
+  }
   for (std::size_t l = 0; l < count; ++l) {
     PointResult& r = results[l];
     r = PointResult{};
     w.active[l] = 0;
-    w.u[l] = w.v[l] = 0.0;
     if (!std::isfinite(points[l].x) || !std::isfinite(points[l].y)) {
       r.status = Status::invalid_input;
       r.reason = "non-finite coordinate";
     } else if (!plan.usable) {
       r.status = Status::failed;
       r.reason = plan.reason;
+    } else if (!std::isfinite(w.u[l]) || !std::isfinite(w.v[l])) {
+      r.status = Status::invalid_input;
+      r.reason = "coordinate overflows after normalization";
     } else {
-      const auto uv = plan.normalize(points[l].x, points[l].y);
-      if (!std::isfinite(uv[0]) || !std::isfinite(uv[1])) {
-        r.status = Status::invalid_input;
-        r.reason = "coordinate overflows after normalization";
-      } else {
-        w.u[l] = uv[0];
-        w.v[l] = uv[1];
-        w.active[l] = 1;
-      }
+      w.active[l] = 1;
     }
+    if (!w.active[l]) w.u[l] = w.v[l] = 0.0;
   }
   if (n >= 2) {
     for (int i = 0; i < nn; ++i) {

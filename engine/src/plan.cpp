@@ -58,11 +58,6 @@ constexpr std::array<double, 3> kProperSamples = {0.2718281828459045, 0.57721566
 
 }  // namespace
 
-std::array<double, 2> InversionPlan::normalize(double x, double y) const {
-  const double dx = x - centre[0], dy = y - centre[1];
-  return {(cos_rotation * dx - sin_rotation * dy) / scale, (sin_rotation * dx + cos_rotation * dy) / scale};
-}
-
 std::array<double, 2> InversionPlan::normalized_point(double t) const {
   return {bernstein_value(x_num, t) / bernstein_value(x_den, t),
           bernstein_value(y_num, t) / bernstein_value(y_den, t)};

@@ -52,8 +52,11 @@ struct InversionPlan {
   bool usable = true;
   const char* reason = "";  // static text
 
-  // Input coordinates -> normalized, and back for distances.
-  std::array<double, 2> normalize(double x, double y) const;
+  // Input coordinates -> normalized (inline: the engine normalizes whole batches in one loop).
+  std::array<double, 2> normalize(double x, double y) const {
+    const double dx = x - centre[0], dy = y - centre[1];
+    return {(cos_rotation * dx - sin_rotation * dy) / scale, (sin_rotation * dx + cos_rotation * dy) / scale};
+  }
   // P(t) in normalized coordinates.
   std::array<double, 2> normalized_point(double t) const;
 };
