@@ -105,12 +105,15 @@ Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double
       // Converging: off the curve the distance is flat to second order at its minimum, so
       // comparing distances cannot resolve t below ~sqrt(eps); f(t) = 0 can. A step this small
       // cannot leave the basin, so take it as Newton gives it.
+      // Converged when the step moves t by a few ulps: d, measured at the t before it, is then
+      // |P(t) - P0| to rounding (it differs by at most |P'| 4 eps), and measuring it again at the
+      // new t would cost a third of the refinement of an on-curve point.
       double next = t + step;
       if (stay_on_segment) next = std::clamp(next, 0.0, 1.0);
       const double moved = std::abs(next - t);
       t = next;
+      if (moved <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) return {t, d};
       d_current = false;
-      if (moved <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) break;
       continue;
     }
     bool accepted = false;

@@ -22,7 +22,8 @@ struct Refined { double t, distance; };
 // Newton's method on f(t) = (P(t) - P0) . P'(t) (the nearest-point condition), started at t0.
 // Safeguards: each step is at most kNewtonMaxStep and must not increase |P(t) - P0| (halved until
 // it does), so the iterate stays in the basin it started in; with `stay_on_segment` it is also
-// clamped to [0,1]. Returns the last accepted iterate and its distance.
+// clamped to [0,1]. Returns the last accepted iterate and its distance (measured before the last
+// step where that step moved t by a few ulps: the same to rounding).
 Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double t0, bool stay_on_segment);
 
 // Parameter of the nearest point of the segment [0,1] to (u0, v0): dense sampling finds every

@@ -111,8 +111,8 @@ HWY_INLINE hn::Vec<D> point_distance(D d, const RationalCurve& curve, hn::Vec<D>
 // exactly the scalar code's sequence of steps (the masks only say which lanes are still at which
 // point of it):
 //   iteration: jet at t; d = |P(t) - P0|; Newton step -f/f' (Gauss-Newton where f' <= 0), capped
-//   at max_step; a step of at most trusted_step is taken as it is (converged when it moves t by at
-//   most 4 eps max(1, |t|)); a larger one is halved until the distance does not increase (at most
+//   at max_step; a step of at most trusted_step is taken as it is (converged, with the distance
+//   measured before it, when it moves t by at most 4 eps max(1, |t|)); a larger one is halved until the distance does not increase (at most
 //   max_halvings times; if none is found, or it does not move t, the iteration stops).
 template <int N, class D>
 HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const NewtonSettings& settings,
@@ -179,10 +179,9 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
       const V next = hn::Min(hn::Max(hn::Add(t, step), zero), one);
       const V moved = hn::Abs(hn::Sub(next, t));
       t = hn::IfThenElse(small, next, t);
+      // Converged: the distance at the t before this step (refine.cpp says why).
+      finish(hn::And(small, converged(moved, t)), dist);
       current = hn::AndNot(small, current);
-      const M done = hn::And(small, converged(moved, t));
-      final_distance = hn::Or(final_distance, done);
-      active = hn::AndNot(done, active);
     }
 
     // Larger steps: halved until the distance does not increase.

@@ -70,9 +70,10 @@ struct Implementation {
   // f(t) = (P(t) - P0) . P'(t), with f' = |P'|^2 + (P - P0) . P'' (|P'|^2 where that is not
   // positive), capped at settings.max_step and clamped to [0, 1]; a step above
   // settings.trusted_step is halved until |P(t) - P0| does not increase. A settled lane gets its
-  // t and distance[l] = |P(t) - P0|. A lane the kernel does not settle (start not in [0, 1], or a
-  // distance that is not finite or that the scalar code would compute with std::hypot) keeps its
-  // t and gets distance[l] = NaN: the caller runs the scalar code for it. Arrays have `count` entries.
+  // t and distance[l] = |P(t) - P0| (measured before the last step where that moved t by a few
+  // ulps). A lane the kernel does not settle (start not in [0, 1], or a distance that is not
+  // finite or that the scalar code would compute with std::hypot) keeps its t and gets
+  // distance[l] = NaN: the caller runs the scalar code for it. Arrays have `count` entries.
   void (*rational_newton)(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                           const double* u, const double* v, double* t, double* distance);
 
