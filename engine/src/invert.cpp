@@ -431,18 +431,18 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
     if (!w.active[l]) w.u[l] = w.v[l] = 0.0;
   }
   if (n >= 2) {
-    for (int i = 0; i < nn; ++i) {
-      double* row = w.B.data() + i * stride;
-      const double b0 = plan.B0[i], bx = plan.Bx[i], by = plan.By[i], bxy = plan.Bxy[i];
-      for (std::size_t l = 0; l < count; ++l) row[l] = b0 - w.u[l] * bx - w.v[l] * by + (w.u[l] * w.v[l]) * bxy;
-    }
-    // An entry that overflowed makes its lane's sum of entry * 0 NaN (inf * 0): one pass over the
-    // rows, lanes innermost, so it vectorizes as the loop above does.
+    // The lower triangle only: B is symmetric and the kernels read nothing else (batch.hpp).
+    // An entry that overflowed makes its lane's sum of entry * 0 NaN (inf * 0); lanes innermost,
+    // so both loops vectorize.
     std::array<double, kBatchLanes> poison{};
-    for (int i = 0; i < nn; ++i) {
-      const double* row = w.B.data() + i * stride;
-      for (std::size_t l = 0; l < count; ++l) poison[l] += row[l] * 0.0;
-    }
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c <= r; ++c) {
+        const int i = r * n + c;
+        double* row = w.B.data() + i * stride;
+        const double b0 = plan.B0[i], bx = plan.Bx[i], by = plan.By[i], bxy = plan.Bxy[i];
+        for (std::size_t l = 0; l < count; ++l) row[l] = b0 - w.u[l] * bx - w.v[l] * by + (w.u[l] * w.v[l]) * bxy;
+        for (std::size_t l = 0; l < count; ++l) poison[l] += row[l] * 0.0;
+      }
     for (std::size_t l = 0; l < count; ++l) {
       if (w.active[l] && !(poison[l] == 0.0)) {
         results[l].status = Status::failed;
