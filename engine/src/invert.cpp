@@ -206,9 +206,6 @@ Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algeb
 // A root of the second-parameter check this close to the lane's t is "near" (see queue_second_parameters).
 constexpr double kNearRoot = 1e-3;
 
-// refine.cpp's safeguards, for the lane-batched refinement.
-constexpr kernels::NewtonSettings kNewtonSettings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep,
-                                                  kNewtonMaxHalvings};
 
 // Per-thread storage for one batch, sized for the largest degree once: nothing is allocated per
 // point or per batch.
@@ -479,8 +476,8 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
     // settle(), as it does a lane that ends at an end of the segment off the curve (settle() then
     // also looks along the extension).
     std::copy_n(w.t_algebraic.begin(), count, w.t_refined.begin());
-    const kernels::RationalCurve curve{n, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(), plan.y_den.data()};
-    kernels::active_implementation().rational_newton(curve, kNewtonSettings, count, w.u.data(), w.v.data(),
+    const kernels::RationalCurve curve = detail::kernel_curve(plan);
+    kernels::active_implementation().rational_newton(curve, detail::kNewtonSettings, count, w.u.data(), w.v.data(),
                                                      w.t_refined.data(), w.distance.data());
     auto answer = [&](std::size_t l, const Candidate& c) {
       PointResult& r = results[l];
@@ -521,7 +518,7 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
     const std::size_t slots = w.root_t.size();
     for (const std::size_t first : {std::size_t{0}, slots - far}) {
       const std::size_t size = first == 0 ? near : far;
-      kernels::active_implementation().rational_newton(curve, kNewtonSettings, size, w.root_u.data() + first,
+      kernels::active_implementation().rational_newton(curve, detail::kNewtonSettings, size, w.root_u.data() + first,
                                                        w.root_v.data() + first, w.root_t.data() + first,
                                                        w.root_distance.data() + first);
     }

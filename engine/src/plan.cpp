@@ -11,6 +11,8 @@
 #include "bezinv/kernels/symmetric_svd.hpp"
 #include "bezinv/tolerances.hpp"
 
+#include "refine.hpp"
+
 namespace bezinv {
 namespace {
 
@@ -156,6 +158,15 @@ InversionPlan make_plan(const Curve& curve) {
   bezout_matrix(xd, yn, plan.Bx);
   bezout_matrix(xn, yd, plan.By);
   if (!plan.common_denominator) bezout_matrix(xd, yd, plan.Bxy);
+
+  // The nearest-point search's samples P(k / S): the same for every point of the curve.
+  const int samples = detail::nearest_sample_count(n);
+  plan.nearest_samples.resize(2 * static_cast<std::size_t>(samples + 1));
+  for (int k = 0; k <= samples; ++k) {
+    const auto p = detail::curve_point(plan, static_cast<double>(k) / samples);
+    plan.nearest_samples[2 * k] = p[0];
+    plan.nearest_samples[2 * k + 1] = p[1];
+  }
 
   if (plan.diagonal == 0.0) {
     plan.usable = false;

@@ -1,8 +1,19 @@
 #pragma once
 // Geometry of the normalized curve for refinement and nearest-point search (engine internal).
+#include "bezinv/kernels/batch.hpp"
 #include "bezinv/plan.hpp"
+#include "bezinv/tolerances.hpp"
 
 namespace bezinv::detail {
+
+// refine_parameter's safeguards, for the kernels' lane-batched copy of it (rational_newton).
+inline constexpr kernels::NewtonSettings kNewtonSettings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep,
+                                                         kNewtonMaxHalvings};
+
+// The normalized curve as the kernels take it.
+inline kernels::RationalCurve kernel_curve(const InversionPlan& plan) {
+  return {plan.degree, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(), plan.y_den.data()};
+}
 
 // P(t), P'(t), P''(t) of the normalized curve. For x = N/D:
 //   x' = (N' - D' x) / D,   x'' = (N'' - 2 D' x' - D'' x) / D.
@@ -26,8 +37,12 @@ struct Refined { double t, distance; };
 // step where that step moved t by a few ulps: the same to rounding).
 Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double t0, bool stay_on_segment);
 
+// The number of intervals S of the nearest-point search's samples k / S at degree n.
+int nearest_sample_count(int degree);
+
 // Parameter of the nearest point of the segment [0,1] to (u0, v0): dense sampling finds every
-// basin, each local minimum is refined, the best one wins. `hint` (if in [0,1]) is refined too.
+// basin, each local minimum is refined, the best one wins. The samples come from
+// plan.nearest_samples when the plan has them (make_plan computes them). `hint` (if in [0,1]) is refined too.
 double nearest_parameter_on_segment(const InversionPlan& plan, double u0, double v0, double hint);
 
 }  // namespace bezinv::detail

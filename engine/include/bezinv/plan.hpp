@@ -40,6 +40,10 @@ struct InversionPlan {
   // B(u0, v0) = B0 - u0 Bx - v0 By + u0 v0 Bxy in normalized coordinates (n x n, row-major).
   std::vector<double> B0, Bx, By, Bxy;
 
+  // The nearest-point search's samples of the normalized curve, P(k / S) for k = 0..S as
+  // (x, y) pairs (engine/src/refine.hpp): computed once here instead of for every off-curve point.
+  std::vector<double> nearest_samples;
+
   // Power-basis leading coefficients of the four polynomials and their size bounds, for
   // detecting a degree drop of p and q at a given point (paper Sect. 4).
   double lead_x_num = 0, lead_x_den = 0, lead_y_num = 0, lead_y_den = 0;

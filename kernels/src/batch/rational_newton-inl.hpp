@@ -123,11 +123,12 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
   using M = hn::Mask<D>;
   constexpr std::size_t L = hn::MaxLanes(D());
   HWY_ALIGN double buffer[L];
-  auto load = [&](const double* p) {  // the group's lanes, padded with 0 (a harmless start of 0)
-    for (std::size_t l = 0; l < L; ++l) buffer[l] = l < lanes ? p[first + l] : 0.0;
+  auto load = [&](const double* p, double padding) {  // the group's lanes, then `padding`
+    for (std::size_t l = 0; l < L; ++l) buffer[l] = l < lanes ? p[first + l] : padding;
     return hn::Load(d, buffer);
   };
-  const V u = load(u_in), v = load(v_in), t0 = load(t_inout);
+  // Padding lanes start at NaN: inactive from the start, they cost no iterations.
+  const V u = load(u_in, 0.0), v = load(v_in, 0.0), t0 = load(t_inout, std::numeric_limits<double>::quiet_NaN());
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
   const V trusted = hn::Set(d, settings.trusted_step), max_step = hn::Set(d, settings.max_step);
   const V four_eps = hn::Set(d, 4 * std::numeric_limits<double>::epsilon());
