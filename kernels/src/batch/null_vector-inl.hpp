@@ -128,16 +128,17 @@ HWY_INLINE hn::Vec<D> chord(D d, const double* HWY_RESTRICT x, const double* HWY
   return hn::Sqrt(hn::Min(minus, plus));
 }
 
-// The defect is the largest of three scale-free numbers, each catching one way the fast path fails:
+// The defect says how far z may be from the singular vector of sigma_n: the larger of
 //   1. chord(x_{k-1}, x_k) over the last two iterations: the iteration has not settled (no gap);
-//   2. ||B z|| / ||B||_F: z is not a null vector (B clearly non-singular);
-//   3. eps ||B||_F / sigma_{n-1}, with 1/sigma_{n-1} estimated by inverse iteration orthogonal to z:
+//   2. eps ||B||_F / sigma_{n-1}, with 1/sigma_{n-1} estimated by inverse iteration orthogonal to z:
 //      the first-order forward error of a computed null vector (backward error eps ||B|| over the
 //      gap, Wedin / Davis-Kahan). For nullity 2 it is ~1 however the rounding happened to split
 //      the two tiny singular values, which measure 1 alone cannot promise: with two tiny singular
 //      values of ratio r, the iterates converge at rate 1/r in the 2-D null space, and r may be
 //      large by chance.
-// Rank n-1 with sigma_{n-1} >= 1e-4 ||B||: all three ~1e-12 or less. Capped at 1.
+// Rank n-1 with sigma_{n-1} >= 1e-4 ||B||: both ~1e-12 or less. Capped at 1. Whether B is singular
+// at all is the residual's to say (||B z|| / ||B||_F, reported apart): a point near the curve but
+// off it has a slightly regular B whose z is as good a seed as a null vector.
 template <int N, class D>
 HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, std::size_t lanes,
                                     const double* HWY_RESTRICT B, double* HWY_RESTRICT z,
@@ -181,7 +182,7 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
     residual2 = hn::MulAdd(row, row, residual2);
   }
   const auto residual = hn::Sqrt(residual2);
-  auto result = hn::Max(unsettled, residual);
+  auto result = unsettled;
   auto next = hn::Set(d, std::numeric_limits<double>::infinity());  // n = 1: no sigma_{n-1}
 
   HWY_ALIGN double w_lanes[N * L];  // the deflated iterate: ~ the singular vector of sigma_{n-1}

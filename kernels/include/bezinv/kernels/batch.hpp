@@ -48,8 +48,10 @@ struct Implementation {
   // The fast path: the null vector of every (nearly) singular matrix by LU with partial pivoting
   // and inverse iteration from (1, ..., 1) (every Bernstein basis vector is positive, so it always
   // has a component along the null vector). Writes z (unit 2-norm) and, per lane, a quality
-  // estimate `defect[l]` >= 0: small when the iteration converged to a simple null vector;
-  // lanes whose defect exceeds the caller's threshold must be redone with symmetric_svd.
+  // estimate `defect[l]` >= 0: small when the iteration converged to the singular vector of a
+  // simple smallest singular value (nullity 1, or a slightly regular matrix: how singular B is,
+  // estimate[l] says); lanes whose defect exceeds the caller's threshold must be redone with
+  // symmetric_svd.
   // `estimate` (may be null; 2 rows of `stride`) receives the evidence without an SVD, both
   // relative to ||B||_F:
   //   estimate[l]          ||B z|| / ||B||_F, an upper bound of sigma_n / ||B||_F;
