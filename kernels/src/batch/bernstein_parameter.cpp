@@ -11,25 +11,12 @@
 
 #if HWY_ONCE
 #include "batch/kernels.hpp"
+#include "batch/per_target.hpp"
 
 namespace bezinv::kernels::batch {
 
 BernsteinParameterKernel bernstein_parameter_kernel(std::int64_t target) {
-  switch (target) {
-#if HWY_TARGETS & HWY_SCALAR
-    case HWY_SCALAR: return &N_SCALAR::bernstein_parameter_batch;
-#endif
-#if HWY_TARGETS & HWY_EMU128
-    case HWY_EMU128: return &N_EMU128::bernstein_parameter_batch;
-#endif
-#if HWY_TARGETS & HWY_AVX2
-    case HWY_AVX2: return &N_AVX2::bernstein_parameter_batch;
-#endif
-#if HWY_TARGETS & HWY_AVX3
-    case HWY_AVX3: return &N_AVX3::bernstein_parameter_batch;
-#endif
-    default: return nullptr;
-  }
+  return for_target<BernsteinParameterKernel>(target, BEZINV_PER_TARGET(bernstein_parameter_batch));
 }
 
 }  // namespace bezinv::kernels::batch

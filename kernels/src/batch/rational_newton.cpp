@@ -11,25 +11,12 @@
 
 #if HWY_ONCE
 #include "batch/kernels.hpp"
+#include "batch/per_target.hpp"
 
 namespace bezinv::kernels::batch {
 
 RationalNewtonKernel rational_newton_kernel(std::int64_t target) {
-  switch (target) {
-#if HWY_TARGETS & HWY_SCALAR
-    case HWY_SCALAR: return &N_SCALAR::rational_newton_batch;
-#endif
-#if HWY_TARGETS & HWY_EMU128
-    case HWY_EMU128: return &N_EMU128::rational_newton_batch;
-#endif
-#if HWY_TARGETS & HWY_AVX2
-    case HWY_AVX2: return &N_AVX2::rational_newton_batch;
-#endif
-#if HWY_TARGETS & HWY_AVX3
-    case HWY_AVX3: return &N_AVX3::rational_newton_batch;
-#endif
-    default: return nullptr;
-  }
+  return for_target<RationalNewtonKernel>(target, BEZINV_PER_TARGET(rational_newton_batch));
 }
 
 }  // namespace bezinv::kernels::batch

@@ -11,25 +11,12 @@
 
 #if HWY_ONCE
 #include "batch/kernels.hpp"
+#include "batch/per_target.hpp"
 
 namespace bezinv::kernels::batch {
 
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target) {
-  switch (target) {
-#if HWY_TARGETS & HWY_SCALAR
-    case HWY_SCALAR: return &N_SCALAR::symmetric_svd_batch;
-#endif
-#if HWY_TARGETS & HWY_EMU128
-    case HWY_EMU128: return &N_EMU128::symmetric_svd_batch;
-#endif
-#if HWY_TARGETS & HWY_AVX2
-    case HWY_AVX2: return &N_AVX2::symmetric_svd_batch;
-#endif
-#if HWY_TARGETS & HWY_AVX3
-    case HWY_AVX3: return &N_AVX3::symmetric_svd_batch;
-#endif
-    default: return nullptr;
-  }
+  return for_target<SymmetricSvdKernel>(target, BEZINV_PER_TARGET(symmetric_svd_batch));
 }
 
 }  // namespace bezinv::kernels::batch
