@@ -15,10 +15,13 @@
 
 #include "batch/constants.hpp"
 #include "batch/sizes-inl.hpp"
+#include "batch/wide-inl.hpp"
 
 HWY_BEFORE_NAMESPACE();
 namespace bezinv::kernels::HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
+// Highway's operations on wide vectors (batch/wide-inl.hpp): D is a wide::Tag<G>, G vectors of
+// lanes processed side by side.
+namespace hn = wide;
 
 // PA = LU of the (Frobenius-normalised) matrix, every lane with its own pivot rows.
 template <int N, class D>
@@ -235,13 +238,24 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
   }
 }
 
+// Lanes per group: kWideVectors<N> SIMD vectors side by side where the batch has them, whose
+// dependency chains overlap, one vector for the rest; each lane computes the same numbers either
+// way. Measured with bench/kernels_bench.cpp on AVX-512 (null_vector, matrices/s), 1 -> 2 -> 4
+// vectors: n = 3 21M -> 32M -> 47M, n = 8 3.8M -> 5.4M -> 6.9M, n = 15 1.27M -> 1.77M -> 1.60M,
+// n = 24 0.41M -> 0.48M -> 0.38M (register pressure).
+template <int N>
+inline constexpr int kWideVectors = N <= 8 ? 4 : 2;
+
 template <int N>
 void null_vector_fixed(std::size_t count, std::size_t stride, const double* B, double* z, double* defect,
                        double* estimate, double* second) {
-  const hn::ScalableTag<double> d;
-  constexpr std::size_t L = hn::MaxLanes(hn::ScalableTag<double>());
-  for (std::size_t first = 0; first < count; first += L)
-    null_vector_group<N>(d, stride, first, std::min(L, count - first), B, z, defect, estimate, second);
+  using Wide = wide::Tag<kWideVectors<N>>;
+  constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(wide::Tag<1>());
+  std::size_t first = 0;
+  for (; first < count && first + LW <= stride; first += LW)  // whole wide groups inside the rows
+    null_vector_group<N>(Wide(), stride, first, std::min(LW, count - first), B, z, defect, estimate, second);
+  for (; first < count; first += L1)
+    null_vector_group<N>(wide::Tag<1>(), stride, first, std::min(L1, count - first), B, z, defect, estimate, second);
 }
 
 void null_vector_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z, double* defect,

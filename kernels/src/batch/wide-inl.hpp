@@ -1,0 +1,100 @@
+// G SIMD vectors used as one ("wide" vectors), for kernels whose work per group of lanes is one
+// long dependency chain: with G independent vectors in flight the core overlaps their latencies
+// (the LU null-vector kernel at small n waits on its square roots and divisions, not on its
+// arithmetic). The operations are Highway's, applied vector by vector, so every lane computes
+// exactly what it would with G = 1. Re-included once per instruction set (see sizes-inl.hpp).
+#if defined(BEZINV_KERNELS_BATCH_WIDE_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef BEZINV_KERNELS_BATCH_WIDE_INL_H_
+#undef BEZINV_KERNELS_BATCH_WIDE_INL_H_
+#else
+#define BEZINV_KERNELS_BATCH_WIDE_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <cstddef>
+
+HWY_BEFORE_NAMESPACE();
+namespace bezinv::kernels::HWY_NAMESPACE::wide {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// The descriptor: G vectors of the native descriptor D, laid out one after the other in memory.
+// Vec<Tag<G>> and Mask<Tag<G>> are its vector and mask types, so that code written against
+// Highway's names (Vec<D>, MaxLanes(D()), Load(d, p), ...) runs on it unchanged.
+template <int G>
+struct Tag {
+  using D = hn::ScalableTag<double>;
+  static constexpr int kVectors = G;
+};
+template <class T>
+constexpr std::size_t MaxLanes(T) { return T::kVectors * hn::MaxLanes(typename T::D()); }
+
+template <class T>
+struct Vec {
+  hn::Vec<typename T::D> v[T::kVectors];
+};
+template <class T>
+struct Mask {
+  hn::Mask<typename T::D> m[T::kVectors];
+};
+
+#define BEZINV_WIDE_EACH(result, expression) \
+  result r;                                  \
+  for (int g = 0; g < T::kVectors; ++g) r.expression;  \
+  return r
+
+template <class T> HWY_INLINE Vec<T> Zero(T) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Zero(typename T::D())); }
+template <class T> HWY_INLINE Vec<T> Set(T, double x) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Set(typename T::D(), x)); }
+template <class T>
+HWY_INLINE Vec<T> Load(T, const double* HWY_RESTRICT p) {
+  constexpr std::size_t L = hn::MaxLanes(typename T::D());
+  BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Load(typename T::D(), p + g * L));
+}
+template <class T>
+HWY_INLINE Vec<T> LoadU(T, const double* HWY_RESTRICT p) {
+  constexpr std::size_t L = hn::MaxLanes(typename T::D());
+  BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::LoadU(typename T::D(), p + g * L));
+}
+template <class T>
+HWY_INLINE void Store(const Vec<T>& a, T, double* HWY_RESTRICT p) {
+  constexpr std::size_t L = hn::MaxLanes(typename T::D());
+  for (int g = 0; g < T::kVectors; ++g) hn::Store(a.v[g], typename T::D(), p + g * L);
+}
+
+template <class T> HWY_INLINE Vec<T> Add(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Add(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Vec<T> Sub(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Sub(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Vec<T> Mul(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Mul(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Vec<T> Div(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Div(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Vec<T> Max(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Max(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Vec<T> Min(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Min(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Vec<T> CopySign(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::CopySign(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Vec<T> Abs(const Vec<T>& a) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Abs(a.v[g])); }
+template <class T> HWY_INLINE Vec<T> Sqrt(const Vec<T>& a) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Sqrt(a.v[g])); }
+template <class T>
+HWY_INLINE Vec<T> MulAdd(const Vec<T>& a, const Vec<T>& b, const Vec<T>& c) {
+  BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::MulAdd(a.v[g], b.v[g], c.v[g]));
+}
+template <class T>
+HWY_INLINE Vec<T> NegMulAdd(const Vec<T>& a, const Vec<T>& b, const Vec<T>& c) {
+  BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::NegMulAdd(a.v[g], b.v[g], c.v[g]));
+}
+template <class T>
+HWY_INLINE Vec<T> IfThenElse(const Mask<T>& m, const Vec<T>& a, const Vec<T>& b) {
+  BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::IfThenElse(m.m[g], a.v[g], b.v[g]));
+}
+template <class T> HWY_INLINE Mask<T> Eq(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Eq(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Mask<T> Gt(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Gt(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Mask<T> Le(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Le(a.v[g], b.v[g])); }
+template <class T>
+HWY_INLINE bool AllFalse(T, const Mask<T>& m) {
+  for (int g = 0; g < T::kVectors; ++g)
+    if (!hn::AllFalse(typename T::D(), m.m[g])) return false;
+  return true;
+}
+
+#undef BEZINV_WIDE_EACH
+
+}  // namespace bezinv::kernels::HWY_NAMESPACE::wide
+HWY_AFTER_NAMESPACE();
+
+#endif  // BEZINV_KERNELS_BATCH_WIDE_INL_H_
