@@ -31,8 +31,11 @@ constexpr std::size_t MaxLanes(T) { return T::kVectors * hn::MaxLanes(typename T
 
 template <class T>
 struct Vec {
+  using Tag = T;
   hn::Vec<typename T::D> v[T::kVectors];
 };
+template <class V>
+using DFromV = typename V::Tag;
 template <class T>
 struct Mask {
   hn::Mask<typename T::D> m[T::kVectors];
@@ -85,6 +88,17 @@ HWY_INLINE Vec<T> IfThenElse(const Mask<T>& m, const Vec<T>& a, const Vec<T>& b)
 template <class T> HWY_INLINE Mask<T> Eq(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Eq(a.v[g], b.v[g])); }
 template <class T> HWY_INLINE Mask<T> Gt(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Gt(a.v[g], b.v[g])); }
 template <class T> HWY_INLINE Mask<T> Le(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Le(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Vec<T> Neg(const Vec<T>& a) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Neg(a.v[g])); }
+template <class T> HWY_INLINE Mask<T> Ge(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Ge(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Mask<T> Lt(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Lt(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Mask<T> Ne(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Ne(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Mask<T> IsFinite(const Vec<T>& a) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::IsFinite(a.v[g])); }
+template <class T> HWY_INLINE Mask<T> And(const Mask<T>& a, const Mask<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::And(a.m[g], b.m[g])); }
+template <class T> HWY_INLINE Mask<T> Or(const Mask<T>& a, const Mask<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Or(a.m[g], b.m[g])); }
+template <class T> HWY_INLINE Mask<T> AndNot(const Mask<T>& a, const Mask<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::AndNot(a.m[g], b.m[g])); }
+template <class T> HWY_INLINE Mask<T> Not(const Mask<T>& a) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Not(a.m[g])); }
+// The first n lanes of the wide vector.
+template <class T> HWY_INLINE Mask<T> FirstN(T, std::size_t n) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::FirstN(typename T::D(), n > g * hn::MaxLanes(typename T::D()) ? n - g * hn::MaxLanes(typename T::D()) : 0)); }
 template <class T>
 HWY_INLINE bool AllFalse(T, const Mask<T>& m) {
   for (int g = 0; g < T::kVectors; ++g)
