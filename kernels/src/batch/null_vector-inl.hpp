@@ -249,8 +249,12 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
 template <int N>
 inline constexpr int kWideVectors = 1;
 #else
+// Wide only where it pays and is measured: SIMD targets, n <= 24 (each wide size is one more
+// instantiation per target, and compile time is CI's budget).
 template <int N>
-inline constexpr int kWideVectors = N <= 8 ? 4 : 2;
+inline constexpr int kWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128 || N > 24) ? 1
+                                    : N <= 8                                                        ? 4
+                                                                                                    : 2;
 #endif
 
 template <int N>

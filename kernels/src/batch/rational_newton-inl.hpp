@@ -237,15 +237,19 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
 // 1 -> 2 -> 4 vectors: n = 3 40M -> 43M -> 37M, n = 8 6.9M -> 7.7M -> 6.1M points/s (a group
 // iterates as long as its slowest lane, so wider groups idle more).
 #ifdef BEZINV_NARROW_KERNELS  // the sanitizer build: see null_vector-inl.hpp
+template <int N>
 inline constexpr int kNewtonWideVectors = 1;
 #else
-inline constexpr int kNewtonWideVectors = 2;
+// SIMD targets and n <= 24 only (each wide size is one more instantiation per target; compile
+// time is CI's budget).
+template <int N>
+inline constexpr int kNewtonWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128 || N > 24) ? 1 : 2;
 #endif
 
 template <int N>
 void rational_newton_fixed(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                            const double* u, const double* v, double* t, double* distance) {
-  using Wide = wide::Tag<kNewtonWideVectors>;
+  using Wide = wide::Tag<kNewtonWideVectors<N>>;
   constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(wide::Tag<1>());
   std::size_t first = 0;
   for (; first + LW <= count; first += LW) rational_newton_group<N>(Wide(), curve, settings, first, LW, u, v, t, distance);
