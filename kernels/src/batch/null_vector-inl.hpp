@@ -243,19 +243,12 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
 // way. Measured with bench/kernels_bench.cpp on AVX-512 (null_vector, matrices/s), 1 -> 2 -> 4
 // vectors: n = 3 21M -> 32M -> 47M, n = 8 3.8M -> 5.4M -> 6.9M, n = 15 1.27M -> 1.77M -> 1.60M,
 // n = 24 0.41M -> 0.48M -> 0.38M (register pressure).
-// BEZINV_NARROW_KERNELS (the sanitizer build, CMakeLists.txt): one vector, one instantiation per
-// size; with the wide ones as well the sanitizer build took too long to compile for CI.
-#ifdef BEZINV_NARROW_KERNELS
-template <int N>
-inline constexpr int kWideVectors = 1;
-#else
 // Wide only where it pays and is measured: SIMD targets, n <= 24 (each wide size is one more
 // instantiation per target, and compile time is CI's budget).
 template <int N>
 inline constexpr int kWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128 || N > 24) ? 1
                                     : N <= 8                                                        ? 4
                                                                                                     : 2;
-#endif
 
 template <int N>
 void null_vector_fixed(std::size_t count, std::size_t stride, const double* B, double* z, double* defect,

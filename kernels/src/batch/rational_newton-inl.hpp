@@ -236,15 +236,10 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
 // same numbers either way. Measured with `bezinv profile` (refine stage, 1 thread, AVX-512),
 // 1 -> 2 -> 4 vectors: n = 3 40M -> 43M -> 37M, n = 8 6.9M -> 7.7M -> 6.1M points/s (a group
 // iterates as long as its slowest lane, so wider groups idle more).
-#ifdef BEZINV_NARROW_KERNELS  // the sanitizer build: see null_vector-inl.hpp
-template <int N>
-inline constexpr int kNewtonWideVectors = 1;
-#else
 // SIMD targets and n <= 24 only (each wide size is one more instantiation per target; compile
 // time is CI's budget).
 template <int N>
 inline constexpr int kNewtonWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128 || N > 24) ? 1 : 2;
-#endif
 
 template <int N>
 void rational_newton_fixed(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
