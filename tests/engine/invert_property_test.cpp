@@ -477,7 +477,8 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
     if (fast.sigma_next >= kFastPathGapRatio) {
       EXPECT_GT(svd.sigma_next, kSecondNullDirectionRatio) << describe(c, k, svd);
     }
-    EXPECT_LE(fast.sigma_next, 3 * svd.sigma_next) << describe(c, k, fast);
+    // Within the factor the gate allows for (tolerances.hpp, kFastPathGapRatio), with a margin.
+    EXPECT_LE(fast.sigma_next, 1.8 * svd.sigma_next) << describe(c, k, fast);
     m.add(dt, dt / parameter_bound(c, k), std::abs(fast.residual - svd.residual) / c.plan.diagonal);
   };
   for (const Case& c : random_cases()) {

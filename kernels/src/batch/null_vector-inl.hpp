@@ -131,6 +131,41 @@ HWY_INLINE hn::Vec<D> chord(D d, const double* HWY_RESTRICT x, const double* HWY
   return hn::Sqrt(hn::Min(minus, plus));
 }
 
+// The largest |Ritz value| of A (B's inverse deflated against z, symmetric like B) on the plane of
+// the last two deflated iterates u = w_{K-2}, v = w_{K-1}, given w = w_K, A u = g1 v and
+// A v = g2 w. The power iteration's growth g2 converges at the rate sigma_{n-1}/sigma_{n-2}, slowly
+// when those two are close (the estimate of sigma_{n-1} was then up to 1.6x high); the plane holds
+// both directions and its Ritz value resolves them (Rayleigh-Ritz on the Krylov space
+// span{u, A u}; Golub & Van Loan, Sect. 10.1). A Ritz value of a symmetric operator never exceeds
+// its norm 1 / sigma_{n-1}, so sigma_{n-1} is still estimated from above.
+// With q = (u - c v) / s the unit vector of the plane orthogonal to v (c = u.v, s^2 = 1 - c^2), the
+// 2 x 2 matrix [v q]^T A [v q] needs only the dot products c, d = u.w and e = v.w:
+//   T11 = g2 e,  T22 = c g2 (c e - d) / s^2,  T12 = (g1 - c g2 e) / s,  T21 = g2 (d - c e) / s,
+// symmetrised (A is symmetric up to the rounding of the LU). When the iterates are nearly parallel
+// (s^2 < 1e-6) the iteration has converged and the cancellation in c e - d would dominate: 0 then,
+// so that the caller keeps g2.
+template <int N, class D>
+HWY_INLINE hn::Vec<D> ritz_growth(D d, const double* HWY_RESTRICT u, const double* HWY_RESTRICT v,
+                                  const double* HWY_RESTRICT w, hn::Vec<D> g1, hn::Vec<D> g2) {
+  const auto c = dot<N>(d, u, v), dd = dot<N>(d, u, w), e = dot<N>(d, v, w);
+  const auto s2 = hn::NegMulAdd(c, c, hn::Set(d, 1.0));
+  const auto planar = hn::Ge(s2, hn::Set(d, 1e-6));
+  const auto safe_s2 = hn::IfThenElse(planar, s2, hn::Set(d, 1.0));
+  const auto inv_s = hn::Div(hn::Set(d, 1.0), hn::Sqrt(safe_s2));
+  const auto ce_minus_d = hn::MulSub(c, e, dd);
+  const auto t11 = hn::Mul(g2, e);
+  const auto t22 = hn::Div(hn::Mul(hn::Mul(c, g2), ce_minus_d), safe_s2);
+  const auto t12 = hn::Mul(hn::NegMulAdd(hn::Mul(c, g2), e, g1), inv_s);
+  const auto t21 = hn::Mul(hn::Neg(hn::Mul(g2, ce_minus_d)), inv_s);
+  const auto off = hn::Mul(hn::Set(d, 0.5), hn::Add(t12, t21));
+  const auto mean = hn::Mul(hn::Set(d, 0.5), hn::Add(t11, t22));
+  const auto half_gap = hn::Mul(hn::Set(d, 0.5), hn::Sub(t11, t22));
+  const auto radius = hn::Sqrt(hn::MulAdd(half_gap, half_gap, hn::Mul(off, off)));
+  const auto largest = hn::Add(hn::Abs(mean), radius);
+  // Not finite (NaN input, overflow): 0, so that the caller keeps g2 (NaN or not).
+  return hn::IfThenElse(hn::And(planar, hn::IsFinite(largest)), largest, hn::Zero(d));
+}
+
 // The defect says how far z may be from the singular vector of sigma_n: the larger of
 //   1. chord(x_{k-1}, x_k) over the last two iterations: the iteration has not settled (no gap);
 //   2. eps ||B||_F / sigma_{n-1}, with 1/sigma_{n-1} estimated by inverse iteration orthogonal to z:
@@ -201,16 +236,28 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
     for (int i = 0; i < N; ++i) hn::Store(hn::Set(d, (i % 2 ? -1.0 : 1.0) * (1.0 + 0.37 * i)), d, w + i * L);
     project();
     normalize<N>(d, w);
-    auto growth = hn::Zero(d);
+    // The last three iterates w_{K-2}, w_{K-1}, w_K and the last two growths g_{K-1}, g_K, with
+    // A w_{k-1} = g_k w_k for A the inverse deflated against z.
+    HWY_ALIGN double older[N * L], old[N * L];
+    auto growth = hn::Zero(d), old_growth = hn::Zero(d);
     for (int iteration = 0; iteration < batch::kDeflatedIterations; ++iteration) {
+      if (iteration + 2 >= batch::kDeflatedIterations) {
+        std::copy(old, old + N * L, older);
+        std::copy(w, w + N * L, old);
+      }
       lu.solve(d, w);
       // Twice: the solve makes the z component ~1/eps times larger than the rest, and one
       // projection leaves rounding of that size (measured: w.z up to 2e-4 after one, with the
       // sigma_{n-1} estimate 0.14% low); the second removes it to rounding of the rest.
       project();
       project();
+      old_growth = growth;
       growth = normalize<N>(d, w);  // ~ 1 / sigma_{n-1} of the normalised matrix
     }
+    // Not Max: x86's max returns its second operand when either is NaN, and a NaN growth (an
+    // overflow) must stay NaN so that the defect sends the lane to the SVD.
+    const auto ritz = ritz_growth<N>(d, older, old, w, old_growth, growth);
+    growth = hn::IfThenElse(hn::Gt(ritz, growth), ritz, growth);
     result = hn::Max(result, hn::Mul(hn::Set(d, batch::kEpsilon), growth));
     next = hn::Div(one, growth);
   }

@@ -78,6 +78,10 @@ HWY_INLINE Vec<T> MulAdd(const Vec<T>& a, const Vec<T>& b, const Vec<T>& c) {
   BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::MulAdd(a.v[g], b.v[g], c.v[g]));
 }
 template <class T>
+HWY_INLINE Vec<T> MulSub(const Vec<T>& a, const Vec<T>& b, const Vec<T>& c) {
+  BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::MulSub(a.v[g], b.v[g], c.v[g]));
+}
+template <class T>
 HWY_INLINE Vec<T> NegMulAdd(const Vec<T>& a, const Vec<T>& b, const Vec<T>& c) {
   BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::NegMulAdd(a.v[g], b.v[g], c.v[g]));
 }
