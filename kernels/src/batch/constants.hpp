@@ -27,5 +27,6 @@ inline constexpr int kInverseIterations = 3;
 // 1.44x once the last two iterates give a Ritz value (null_vector-inl.hpp, ritz_growth). Each costs
 // n^2, against n^3/3 for the factorization.
 inline constexpr int kDeflatedIterations = 8;
+static_assert(kDeflatedIterations >= 2, "the Ritz value needs the last two iterates");
 
 }  // namespace bezinv::kernels::batch

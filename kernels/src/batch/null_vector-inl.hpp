@@ -241,10 +241,8 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
     HWY_ALIGN double older[N * L], old[N * L];
     auto growth = hn::Zero(d), old_growth = hn::Zero(d);
     for (int iteration = 0; iteration < batch::kDeflatedIterations; ++iteration) {
-      if (iteration + 2 >= batch::kDeflatedIterations) {
-        std::copy(old, old + N * L, older);
-        std::copy(w, w + N * L, old);
-      }
+      if (iteration + 1 == batch::kDeflatedIterations) std::copy(old, old + N * L, older);
+      if (iteration + 2 >= batch::kDeflatedIterations) std::copy(w, w + N * L, old);
       lu.solve(d, w);
       // Twice: the solve makes the z component ~1/eps times larger than the rest, and one
       // projection leaves rounding of that size (measured: w.z up to 2e-4 after one, with the
