@@ -392,8 +392,9 @@ void queue_second_parameters(int n, BatchWorkspace& w, std::size_t l, double t, 
                                                std::span<const double>(second.data(), n), roots);
   for (int i = 0; i < count; ++i) {
     const double start = std::clamp(roots[i], 0.0, 1.0);  // NaN stays NaN: not settled, refined to NaN
-    if (std::abs(start - t) <= kSameRoot) continue;  // z's own root (see kSameRoot)
-    const std::size_t k = std::abs(start - t) <= kNearRoot ? near++ : w.root_t.size() - 1 - far++;
+    const double from_t = std::abs(start - t);
+    if (from_t <= kSameRoot) continue;  // z's own root (see kSameRoot)
+    const std::size_t k = from_t <= kNearRoot ? near++ : w.root_t.size() - 1 - far++;
     w.root_t[k] = start;
     w.root_u[k] = w.u[l];
     w.root_v[k] = w.v[l];

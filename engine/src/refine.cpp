@@ -143,13 +143,9 @@ double nearest_parameter_on_segment(const InversionPlan& plan, double u0, double
   constexpr int kMaxSamples = kNearestSamplesPerDegree * kMaxDegree;
   const int samples = nearest_sample_count(plan.degree);
   std::array<double, kMaxSamples + 1> d;
-  if (plan.nearest_samples.size() == 2 * static_cast<std::size_t>(samples + 1)) {
-    // The same numbers as distance() at k / S: P(k / S) was computed by curve_point in make_plan.
-    const double* p = plan.nearest_samples.data();
-    for (int k = 0; k <= samples; ++k) d[k] = length(p[2 * k] - u0, p[2 * k + 1] - v0);
-  } else {
-    for (int k = 0; k <= samples; ++k) d[k] = distance(plan, u0, v0, static_cast<double>(k) / samples);
-  }
+  // The same numbers as distance() at k / S: P(k / S) was computed by curve_point in make_plan.
+  const double* p = plan.nearest_samples.data();
+  for (int k = 0; k <= samples; ++k) d[k] = length(p[2 * k] - u0, p[2 * k + 1] - v0);
   // Local minima of the sampled distance; each marks a basin to refine in. The best kMaxBasins
   // are kept (a curve of degree n has at most 2n-1 of them, and only the nearest few can win).
   constexpr int kMaxBasins = 8;

@@ -41,8 +41,8 @@ Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double
 int nearest_sample_count(int degree);
 
 // Parameter of the nearest point of the segment [0,1] to (u0, v0): dense sampling finds every
-// basin, each local minimum is refined, the best one wins. The samples come from
-// plan.nearest_samples when the plan has them (make_plan computes them). `hint` (if in [0,1]) is refined too.
+// basin, each local minimum is refined, the best one wins. The samples are plan.nearest_samples
+// (make_plan computes them). `hint` (if in [0,1]) is refined too.
 double nearest_parameter_on_segment(const InversionPlan& plan, double u0, double v0, double hint);
 
 }  // namespace bezinv::detail

@@ -73,18 +73,16 @@ template <class T> HWY_INLINE Vec<T> Min(const Vec<T>& a, const Vec<T>& b) { BEZ
 template <class T> HWY_INLINE Vec<T> CopySign(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::CopySign(a.v[g], b.v[g])); }
 template <class T> HWY_INLINE Vec<T> Abs(const Vec<T>& a) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Abs(a.v[g])); }
 template <class T> HWY_INLINE Vec<T> Sqrt(const Vec<T>& a) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Sqrt(a.v[g])); }
-template <class T>
-HWY_INLINE Vec<T> MulAdd(const Vec<T>& a, const Vec<T>& b, const Vec<T>& c) {
-  BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::MulAdd(a.v[g], b.v[g], c.v[g]));
-}
-template <class T>
-HWY_INLINE Vec<T> MulSub(const Vec<T>& a, const Vec<T>& b, const Vec<T>& c) {
-  BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::MulSub(a.v[g], b.v[g], c.v[g]));
-}
-template <class T>
-HWY_INLINE Vec<T> NegMulAdd(const Vec<T>& a, const Vec<T>& b, const Vec<T>& c) {
-  BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::NegMulAdd(a.v[g], b.v[g], c.v[g]));
-}
+// The fused operations a * b + c, a * b - c, c - a * b.
+#define BEZINV_WIDE_FUSED(Op)                                                    \
+  template <class T>                                                             \
+  HWY_INLINE Vec<T> Op(const Vec<T>& a, const Vec<T>& b, const Vec<T>& c) {      \
+    BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Op(a.v[g], b.v[g], c.v[g]));            \
+  }
+BEZINV_WIDE_FUSED(MulAdd)
+BEZINV_WIDE_FUSED(MulSub)
+BEZINV_WIDE_FUSED(NegMulAdd)
+#undef BEZINV_WIDE_FUSED
 template <class T>
 HWY_INLINE Vec<T> IfThenElse(const Mask<T>& m, const Vec<T>& a, const Vec<T>& b) {
   BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::IfThenElse(m.m[g], a.v[g], b.v[g]));
