@@ -27,6 +27,10 @@ inline constexpr int kInverseIterations = 3;
 // 1.44x once the last two iterates give a Ritz value (null_vector-inl.hpp, ritz_growth). Each costs
 // n^2, against n^3/3 for the factorization.
 inline constexpr int kDeflatedIterations = 8;
-static_assert(kDeflatedIterations >= 2, "the Ritz value needs the last two iterates");
+// Except for n <= 3: the deflated space (orthogonal to z) then has dimension n - 1 <= 2, so the
+// plane of the last two iterates is all of it (or they are parallel, at n = 2) and the Ritz value
+// is exact after two iterations.
+constexpr int deflated_iterations(int n) { return n <= 3 ? 2 : kDeflatedIterations; }
+static_assert(deflated_iterations(1) >= 2 && kDeflatedIterations >= 2, "the Ritz value needs the last two iterates");
 
 }  // namespace bezinv::kernels::batch

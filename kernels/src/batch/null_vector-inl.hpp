@@ -292,9 +292,10 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
     // A w_{k-1} = g_k w_k for A the inverse deflated against z.
     HWY_ALIGN double older[N * L], old[N * L];
     auto growth = hn::Zero(d), old_growth = hn::Zero(d);
-    for (int iteration = 0; iteration < batch::kDeflatedIterations; ++iteration) {
-      if (iteration + 1 == batch::kDeflatedIterations) std::copy(old, old + N * L, older);
-      if (iteration + 2 >= batch::kDeflatedIterations) std::copy(w, w + N * L, old);
+    constexpr int kIterations = batch::deflated_iterations(N);
+    for (int iteration = 0; iteration < kIterations; ++iteration) {
+      if (iteration + 1 == kIterations) std::copy(old, old + N * L, older);
+      if (iteration + 2 >= kIterations) std::copy(w, w + N * L, old);
       lu.solve(d, w);
       // Twice: the solve makes the z component ~1/eps times larger than the rest, and one
       // projection leaves rounding of that size (measured: w.z up to 2e-4 after one, with the
