@@ -35,12 +35,10 @@ namespace hn = wide;
 // of one polynomial at one t per lane of a native vector; out[k] = the f_k left over, k < Count.
 // Written out (every loop unrolled) so that f lives in registers: with the loops rolled GCC kept
 // the four polynomials' f on the stack, every update a store and a reload (measured: the whole
-// pipeline 3-10% faster at n = 3..20, same bits). Not inlined: one copy per size instead of one
-// per call site and group width: written out and inlined, this file took 3.5 min to compile instead
-// of 1.2 (CI's budget); written out and not inlined, 1.0.
+// pipeline 3-10% faster at n = 3..20, same bits).
 template <int N, int Steps, int Count, class DN>
-HWY_NOINLINE void de_casteljau_native(DN d, const double* HWY_RESTRICT c, hwy::HWY_NAMESPACE::Vec<DN> t,
-                                      hwy::HWY_NAMESPACE::Vec<DN>* HWY_RESTRICT out) {
+HWY_INLINE void de_casteljau_inline(DN d, const double* HWY_RESTRICT c, hwy::HWY_NAMESPACE::Vec<DN> t,
+                                    hwy::HWY_NAMESPACE::Vec<DN>* HWY_RESTRICT out) {
   namespace hw = hwy::HWY_NAMESPACE;
   static_assert(0 <= Steps && Steps <= N && Count <= N + 1 - Steps);
   const auto s = hw::Sub(hw::Set(d, 1.0), t);
@@ -55,13 +53,25 @@ HWY_NOINLINE void de_casteljau_native(DN d, const double* HWY_RESTRICT c, hwy::H
   for (int k = 0; k < Count; ++k) out[k] = f[k];
 }
 
+// The same, not inlined: one copy per size instead of one per call site and group width. Written
+// out and inlined at every size, this file took 3.5 min to compile instead of 1.2 (CI's budget);
+// inlined only up to n = 4, 1.0.
+template <int N, int Steps, int Count, class DN>
+HWY_NOINLINE void de_casteljau_native(DN d, const double* HWY_RESTRICT c, hwy::HWY_NAMESPACE::Vec<DN> t,
+                                      hwy::HWY_NAMESPACE::Vec<DN>* HWY_RESTRICT out) {
+  de_casteljau_inline<N, Steps, Count>(d, c, t, out);
+}
+
 // The same for a wide group, native vector by native vector.
 template <int N, int Steps, int Count, class D>
 HWY_INLINE void de_casteljau(D, const double* HWY_RESTRICT c, const hn::Vec<D>& t, hn::Vec<D>* HWY_RESTRICT out) {
   using DN = typename D::D;
   for (int g = 0; g < D::kVectors; ++g) {
     hwy::HWY_NAMESPACE::Vec<DN> f[Count];
-    de_casteljau_native<N, Steps, Count>(DN(), c, t.v[g], f);
+    if constexpr (N <= 4)  // the call would cost more than these few steps (n = 3: 18% of the kernel)
+      de_casteljau_inline<N, Steps, Count>(DN(), c, t.v[g], f);
+    else
+      de_casteljau_native<N, Steps, Count>(DN(), c, t.v[g], f);
     for (int k = 0; k < Count; ++k) out[k].v[g] = f[k];
   }
 }
