@@ -244,6 +244,38 @@ BatchWorkspace& batch_workspace() {
   return workspace;
 }
 
+// The lanes a batch leaves for the SVD path (stages 2-5 below), when they are too few to fill a
+// SIMD group of the Jacobi kernel: they wait here, per thread, for the next batches' until there
+// are kSvdGroupLanes, and whatever is left is run at the end of each range of batches (so the
+// queue never outlives the plan it was filled for). With the fast path on, 0.1-0.3% of on-curve
+// points take the SVD path (degrees 8-16), less than one per batch of kBatchLanes: run at once,
+// each cost a whole group of 8 lanes, 13% of the pipeline at degree 15 (perf). A lane's answer
+// does not depend on the others of its group (the Jacobi kernel freezes converged lanes, the
+// rest of the path is per lane), so neither the batch nor the thread count changes it.
+constexpr std::size_t kSvdGroupLanes = 8;
+
+struct SvdQueue {
+  std::vector<double> B = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
+  std::array<double, kBatchLanes> u, v;
+  std::array<PointResult*, kBatchLanes> target;  // where lane k's answer goes
+  std::size_t size = 0;
+};
+
+SvdQueue& svd_queue() {
+  thread_local SvdQueue queue;
+  return queue;
+}
+
+// Empties this thread's queue when it goes out of scope: after the last flush it is empty anyway;
+// if an exception (bad_alloc) cut the work short, the waiting lanes point into the caller's
+// results and must not be run by a later call.
+struct SvdQueueScope {
+  SvdQueueScope() = default;
+  SvdQueueScope(const SvdQueueScope&) = delete;
+  SvdQueueScope& operator=(const SvdQueueScope&) = delete;
+  ~SvdQueueScope() { svd_queue().size = 0; }
+};
+
 // Stage 2 for a whole batch. Lane l's B is entry (r, c) at B[(r n + c) stride + l]; sigma and V
 // come back in the same lane-major layout (kernels/include/bezinv/kernels/batch.hpp).
 //
@@ -402,6 +434,63 @@ void queue_second_parameters(int n, BatchWorkspace& w, std::size_t l, double t, 
   }
 }
 
+// Stages 2-5 for the m lanes the fast path left (all lanes without it), compacted: lane k's B is
+// entry (r, c) at B[(r n + c) kBatchLanes + k], its point (u[k], v[k]), its answer *target[k].
+void svd_path(const InversionPlan& plan, const double* B, const double* u, const double* v,
+              PointResult* const* target, std::size_t m, const InvertOptions& options, BatchWorkspace& w,
+              StageClock& clock) {
+  const int n = plan.degree, nn = n * n;
+  const std::size_t stride = kBatchLanes;
+  const double tolerance = options.relative_tolerance * plan.diagonal / plan.scale;
+  // 2. kernel.
+  if (n >= 2 && m > 0) batch_symmetric_svd(n, m, stride, B, w.sigma.data(), w.V.data());
+  clock.lap(&StageSeconds::kernel);
+
+  // 3. read-out: the right singular vector of the smallest singular value (degree 1: B is 1 x 1
+  // with no null vector to read; p and q are linear, see linear_parameter).
+  if (n >= 2 && m > 0)
+    kernels::active_implementation().bernstein_parameter(n, m, stride, w.V.data() + (n - 1) * n * stride,
+                                                         w.t_algebraic.data());
+  for (std::size_t k = 0; k < m; ++k) {
+    if (n == 1)
+      w.t_algebraic[k] = linear_parameter(point_polynomials(plan, u[k], v[k]));
+    else if (!(w.sigma[k] > 0 && std::isfinite(w.sigma[k])))
+      w.t_algebraic[k] = PointResult::nan;
+  }
+  clock.lap(&StageSeconds::read_out);
+
+  // 4. refine and measure the main candidate.
+  for (std::size_t k = 0; k < m; ++k) {
+    w.main[k] = Candidate{};
+    if (n == 1 || (w.sigma[k] > 0 && std::isfinite(w.sigma[k])))
+      w.main[k] = settle(plan, u[k], v[k], w.t_algebraic[k], Path::bezout, tolerance, options.refine);
+  }
+  clock.lap(&StageSeconds::refine);
+
+  // 5. decide.
+  std::array<double, kMaxDegree> sigma;
+  std::array<double, kMaxDegree * kMaxDegree> V;
+  for (std::size_t k = 0; k < m; ++k) {
+    for (int i = 0; i < n && n >= 2; ++i) sigma[i] = w.sigma[i * stride + k];
+    for (int i = 0; i < nn && n >= 2; ++i) V[i] = w.V[i * stride + k];
+    if (n == 1) sigma[0] = 0.0;
+    decide(plan, u[k], v[k], w.main[k], sigma.data(), V.data(), options, *target[k]);
+  }
+  clock.lap(&StageSeconds::decide);
+}
+
+
+// Runs the lanes waiting in this thread's queue (see SvdQueue).
+void flush_svd_queue(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages) {
+  SvdQueue& queue = svd_queue();
+  if (queue.size == 0) return;
+  StageClock clock(stages);
+  const std::size_t m = queue.size;
+  queue.size = 0;
+  svd_path(plan, queue.B.data(), queue.u.data(), queue.v.data(), queue.target.data(), m, options,
+           batch_workspace(), clock);
+}
+
 // One batch (count <= kBatchLanes) of points of one curve through the five stages.
 void invert_batch(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
                   const InvertOptions& options, StageSeconds* stages) {
@@ -557,41 +646,25 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
     w.lane_of[m++] = static_cast<std::uint8_t>(l);
   }
 
-  // 2. kernel.
-  if (n >= 2 && m > 0) batch_symmetric_svd(n, m, stride, w.B.data(), w.sigma.data(), w.V.data());
-  clock.lap(&StageSeconds::kernel);
-
-  // 3. read-out: the right singular vector of the smallest singular value (degree 1: B is 1 x 1
-  // with no null vector to read; p and q are linear, see linear_parameter).
-  if (n >= 2 && m > 0)
-    kernels::active_implementation().bernstein_parameter(n, m, stride, w.V.data() + (n - 1) * n * stride,
-                                                         w.t_algebraic.data());
-  for (std::size_t k = 0; k < m; ++k) {
-    if (n == 1)
-      w.t_algebraic[k] = linear_parameter(point_polynomials(plan, w.u[k], w.v[k]));
-    else if (!(w.sigma[k] > 0 && std::isfinite(w.sigma[k])))
-      w.t_algebraic[k] = PointResult::nan;
+  if (m == 0) {
+    clock.lap(&StageSeconds::decide);  // the routing above is the decide stage's
+    return;
   }
-  clock.lap(&StageSeconds::read_out);
-
-  // 4. refine and measure the main candidate.
-  for (std::size_t k = 0; k < m; ++k) {
-    w.main[k] = Candidate{};
-    if (n == 1 || (w.sigma[k] > 0 && std::isfinite(w.sigma[k])))
-      w.main[k] = settle(plan, w.u[k], w.v[k], w.t_algebraic[k], Path::bezout, tolerance, options.refine);
+  SvdQueue& queue = svd_queue();
+  if (m >= kSvdGroupLanes || queue.size + m > kBatchLanes) {  // enough for a group: here and now
+    std::array<PointResult*, kBatchLanes> target;
+    for (std::size_t k = 0; k < m; ++k) target[k] = &results[w.lane_of[k]];
+    svd_path(plan, w.B.data(), w.u.data(), w.v.data(), target.data(), m, options, w, clock);
+    return;
   }
-  clock.lap(&StageSeconds::refine);
-
-  // 5. decide.
-  std::array<double, kMaxDegree> sigma;
-  std::array<double, kMaxDegree * kMaxDegree> V;
-  for (std::size_t k = 0; k < m; ++k) {
-    for (int i = 0; i < n && n >= 2; ++i) sigma[i] = w.sigma[i * stride + k];
-    for (int i = 0; i < nn && n >= 2; ++i) V[i] = w.V[i * stride + k];
-    if (n == 1) sigma[0] = 0.0;
-    decide(plan, w.u[k], w.v[k], w.main[k], sigma.data(), V.data(), options, results[w.lane_of[k]]);
+  for (std::size_t k = 0; k < m; ++k, ++queue.size) {
+    for (int i = 0; i < nn; ++i) queue.B[i * stride + queue.size] = w.B[i * stride + k];
+    queue.u[queue.size] = w.u[k];
+    queue.v[queue.size] = w.v[k];
+    queue.target[queue.size] = &results[w.lane_of[k]];
   }
   clock.lap(&StageSeconds::decide);
+  if (queue.size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);
 }
 
 // All points of one curve: batches in parallel.
@@ -607,7 +680,9 @@ std::string_view active_kernel_name() {
 
 PointResult invert_point(const InversionPlan& plan, Point point, const InvertOptions& options) {
   PointResult r;
+  const SvdQueueScope scope;
   invert_batch(plan, &point, &r, 1, options, nullptr);
+  flush_svd_queue(plan, options, nullptr);
   return r;
 }
 
@@ -627,12 +702,15 @@ tbb::task_arena& arena_for(int threads) {
   return *arena;
 }
 
-template <typename Body>
-void for_each_batch(std::size_t count, const InvertOptions& options, Body&& body) {
+// body(begin, end) for every batch, then end_of_range() after each range of batches a thread runs.
+template <typename Body, typename EndOfRange>
+void for_each_batch(std::size_t count, const InvertOptions& options, Body&& body, EndOfRange&& end_of_range) {
   const std::size_t batches = (count + kBatchLanes - 1) / kBatchLanes;
   auto run = [&](const tbb::blocked_range<std::size_t>& range) {
+    const SvdQueueScope scope;
     for (std::size_t b = range.begin(); b != range.end(); ++b)
       body(b * kBatchLanes, std::min(count, (b + 1) * kBatchLanes));
+    end_of_range();
   };
   if (options.threads == 1 || batches <= 1) {
     run(tbb::blocked_range<std::size_t>(0, batches));
@@ -645,10 +723,13 @@ void invert_curve(const InversionPlan& plan, std::span<const Point> points, std:
                   const InvertOptions& options, StageSeconds* stages) {
   // Stage times are summed per thread, then added up (seconds of work, not wall time).
   tbb::enumerable_thread_specific<StageSeconds> per_thread;
-  for_each_batch(points.size(), options, [&](std::size_t begin, std::size_t end) {
-    invert_batch(plan, points.data() + begin, results.data() + begin, end - begin, options,
-                 stages ? &per_thread.local() : nullptr);
-  });
+  for_each_batch(
+      points.size(), options,
+      [&](std::size_t begin, std::size_t end) {
+        invert_batch(plan, points.data() + begin, results.data() + begin, end - begin, options,
+                     stages ? &per_thread.local() : nullptr);
+      },
+      [&] { flush_svd_queue(plan, options, stages ? &per_thread.local() : nullptr); });
   if (stages)
     for (const StageSeconds& s : per_thread) {
       stages->form_b += s.form_b; stages->kernel += s.kernel; stages->read_out += s.read_out;
