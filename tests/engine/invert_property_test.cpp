@@ -446,6 +446,39 @@ TEST(InvertProperty, BatchedEqualsSinglePointBitForBit) {
 // rounding. Both routes refine to the same root of f(t) = (P(t) - P0) . P'(t) from seeds that differ
 // by ~1e-13, so the last iterates may differ by the rounding of f near the root: the accuracy
 // model's parameter_bound, not bit equality.
+// Many batches with a few SVD-path lanes each (points off the curve among points on it): those
+// lanes wait in the engine's per-thread queue across batches (invert.cpp, SvdQueue) and are run
+// with other batches' lanes, yet each answer is the one invert_point gives, for any thread count.
+TEST(InvertProperty, QueuedSvdLanesAnswerAsAlone) {
+  int ran = 0;
+  for (const Case& c : random_cases()) {
+    if (c.plan.degree < 3 || c.plan.degree > 16) continue;
+    if (ran++ == 6) break;
+    std::mt19937_64 rng(c.seed + 11);
+    const std::vector<KnownPoint> on = datasets::segment_points(*c.sampling, 1500, rng);
+    const std::vector<KnownPoint> off = datasets::normal_offset_points(*c.sampling, 60, 1e-3, 0.1, rng);
+    std::vector<Point> xy;
+    for (std::size_t i = 0; i < on.size(); ++i) {
+      xy.push_back(on[i].point);
+      if (i % 25 == 0 && i / 25 < off.size()) xy.push_back(off[i / 25].point);  // ~2.5 per batch
+    }
+    std::vector<PointResult> single(xy.size());
+    std::size_t svd_lanes = 0;
+    for (std::size_t i = 0; i < xy.size(); ++i) {
+      single[i] = invert_point(c.plan, xy[i]);
+      svd_lanes += single[i].path != Path::bezout_lu;
+    }
+    EXPECT_GE(svd_lanes, 40u) << c.name << ": the test needs lanes on the SVD path";
+    for (int threads : {1, 2}) {
+      std::vector<PointResult> batched(xy.size());
+      invert(c.plan, xy, batched, {.threads = threads});
+      for (std::size_t i = 0; i < xy.size(); ++i)
+        EXPECT_TRUE(identical(batched[i], single[i])) << c.name << ", threads " << threads << ", point " << i;
+    }
+  }
+  EXPECT_EQ(ran, 7);  // six cases ran (the seventh ended the loop)
+}
+
 TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
   Measured m{"fast path vs SVD path (same rows)"};
   const InvertOptions svd_only{.fast_path = false};
