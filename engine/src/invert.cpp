@@ -527,17 +527,13 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
   }
   if (n >= 2) {
     // The lower triangle only: B is symmetric and the kernels read nothing else (batch.hpp).
-    // An entry that overflowed makes its lane's sum of entry * 0 NaN (inf * 0); lanes innermost,
-    // so both loops vectorize.
-    std::array<double, kBatchLanes> poison{};
-    for (int r = 0; r < n; ++r)
-      for (int c = 0; c <= r; ++c) {
-        const int i = r * n + c;
-        double* row = w.B.data() + i * stride;
-        const double b0 = plan.B0[i], bx = plan.Bx[i], by = plan.By[i], bxy = plan.Bxy[i];
-        for (std::size_t l = 0; l < count; ++l) row[l] = b0 - w.u[l] * bx - w.v[l] * by + (w.u[l] * w.v[l]) * bxy;
-        for (std::size_t l = 0; l < count; ++l) poison[l] += row[l] * 0.0;
-      }
+    // An entry that overflowed makes its lane's sum of entry * 0 NaN (inf * 0). A kernel, so that
+    // it runs in the CPU's widest vectors (this file is compiled for baseline x86-64): the stage
+    // went 2x faster at degree 8 and 3x at degree 15 (bezinv profile, 1 thread, AVX-512).
+    std::array<double, kBatchLanes> poison;
+    kernels::active_implementation().bezout_matrix(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
+                                                   plan.Bxy.data(), w.u.data(), w.v.data(), w.B.data(),
+                                                   poison.data());
     for (std::size_t l = 0; l < count; ++l) {
       if (w.active[l] && !(poison[l] == 0.0)) {
         results[l].status = Status::failed;

@@ -34,10 +34,11 @@ struct Table {
       const auto null = batch::null_vector_kernel(kCandidates[i].target);
       const auto newton = batch::rational_newton_kernel(kCandidates[i].target);
       const auto parameter = batch::bernstein_parameter_kernel(kCandidates[i].target);
-      if (svd == nullptr || null == nullptr || newton == nullptr || parameter == nullptr ||
+      const auto bezout = batch::bezout_matrix_kernel(kCandidates[i].target);
+      if (svd == nullptr || null == nullptr || newton == nullptr || parameter == nullptr || bezout == nullptr ||
           (supported & kCandidates[i].target) == 0)
         continue;
-      storage[count] = Implementation{kCandidates[i].name, svd, null, newton, parameter};
+      storage[count] = Implementation{kCandidates[i].name, svd, null, newton, parameter, bezout};
       available[count] = &storage[count];
       ++count;
     }

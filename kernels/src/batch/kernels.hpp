@@ -16,11 +16,15 @@ using RationalNewtonKernel = void (*)(const RationalCurve& curve, const NewtonSe
                                       std::size_t count, const double* u, const double* v, double* t,
                                       double* distance);
 using BernsteinParameterKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* z, double* t);
+using BezoutMatrixKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
+                                    const double* By, const double* Bxy, const double* u, const double* v, double* B,
+                                    double* poison);
 
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);
 NullVectorKernel null_vector_kernel(std::int64_t target);
 RationalNewtonKernel rational_newton_kernel(std::int64_t target);
 BernsteinParameterKernel bernstein_parameter_kernel(std::int64_t target);
+BezoutMatrixKernel bezout_matrix_kernel(std::int64_t target);
 
 }  // namespace bezinv::kernels::batch

@@ -85,6 +85,17 @@ struct Implementation {
   // taken at the largest component and the larger of its neighbours. NaN where that denominator is
   // 0. Writes t[0..count); the engine's parameter_from_null_vector gives the same bits.
   void (*bernstein_parameter)(int n, std::size_t count, std::size_t stride, const double* z, double* t);
+
+  // The Bezout matrix of every lane's point (u[l], v[l]) from the plan's coefficient matrices
+  // (n x n, row-major; engine/include/bezinv/plan.hpp): entry (r, c), r >= c, of lane l is
+  //     B[(r * n + c) * stride + l] = ((B0 - u Bx) - v By) + (u v) Bxy   at index r * n + c,
+  // in that order and without fused multiply-add, so every implementation gives the engine's bits.
+  // The upper triangle is not written (the kernels read only r >= c). poison[l] is the sum of the
+  // lane's entries times 0: 0, or NaN when an entry overflowed. The padding lanes of the last SIMD
+  // vector get B0 (finite, as this layout asks); u, v and poison are read and written for l < count.
+  void (*bezout_matrix)(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
+                        const double* By, const double* Bxy, const double* u, const double* v, double* B,
+                        double* poison);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the

@@ -1,0 +1,101 @@
+// The lane-batched Bezout matrices (Implementation::bezout_matrix), every available implementation:
+// each entry against the exact value of B0 - u Bx - v By + u v Bxy (GMP) within the rounding of its
+// four products and three sums, and bit for bit against the others and the engine's expression
+// (the order of the operations is the contract that keeps the engine's answers the same on every
+// instruction set).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "bezinv/kernels/batch.hpp"
+#include "support/exact.hpp"
+
+namespace bezinv::kernels {
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr double kUnset = -7.0;  // what the upper triangle and lanes past the last vector keep
+
+TEST(BatchBezoutMatrix, EntriesAreTheAffineCombinationInEveryImplementation) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> coefficient(-3.0, 3.0), coordinate(-2.0, 2.0);
+  std::vector<double> reference;  // the first implementation's entries, for the others
+  for (int n = 1; n <= kMaxBatchSize; ++n) {
+    for (std::size_t count : {std::size_t{1}, std::size_t{5}, std::size_t{8}, std::size_t{19}}) {
+      const std::size_t nn = static_cast<std::size_t>(n) * n, stride = batch_stride(count);
+      std::vector<double> B0(nn), Bx(nn), By(nn), Bxy(nn), u(count), v(count);
+      for (std::size_t i = 0; i < nn; ++i) {
+        B0[i] = coefficient(rng);
+        Bx[i] = coefficient(rng);
+        By[i] = coefficient(rng);
+        Bxy[i] = i % 3 ? coefficient(rng) : 0.0;  // 0 for a common denominator
+      }
+      for (std::size_t l = 0; l < count; ++l) u[l] = coordinate(rng), v[l] = coordinate(rng);
+      bool first = true;
+      for (const Implementation* implementation : available_implementations()) {
+        SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " count=" + std::to_string(count));
+        std::vector<double> B(nn * stride, kUnset), poison(count, kUnset);
+        implementation->bezout_matrix(n, count, stride, B0.data(), Bx.data(), By.data(), Bxy.data(), u.data(),
+                                      v.data(), B.data(), poison.data());
+        for (std::size_t l = 0; l < count; ++l) {
+          EXPECT_EQ(poison[l], 0.0) << "lane " << l;
+          for (int r = 0; r < n; ++r)
+            for (int c = 0; c < n; ++c) {
+              const std::size_t i = static_cast<std::size_t>(r * n + c);
+              const double got = B[i * stride + l];
+              if (c > r) {
+                EXPECT_EQ(got, kUnset) << "upper triangle written at (" << r << ", " << c << ")";
+                continue;
+              }
+              const mpq_class exact = mpq_class(B0[i]) - mpq_class(u[l]) * mpq_class(Bx[i]) -
+                                      mpq_class(v[l]) * mpq_class(By[i]) +
+                                      mpq_class(u[l]) * mpq_class(v[l]) * mpq_class(Bxy[i]);
+              const double size = std::abs(B0[i]) + std::abs(u[l] * Bx[i]) + std::abs(v[l] * By[i]) +
+                                  std::abs(u[l] * v[l] * Bxy[i]);
+              EXPECT_LE(std::abs(got - exact.get_d()), 4 * kEps * size) << "(" << r << ", " << c << ") lane " << l;
+              // The engine's expression, evaluated here in the same order (no FMA on this build's
+              // baseline target).
+              const double engine = B0[i] - u[l] * Bx[i] - v[l] * By[i] + (u[l] * v[l]) * Bxy[i];
+              EXPECT_EQ(got, engine) << "(" << r << ", " << c << ") lane " << l;
+            }
+        }
+        // Padding lanes of the last vector hold finite values (B0 here); none past the stride.
+        for (std::size_t l = count; l < stride; ++l)
+          EXPECT_TRUE(B[l] == kUnset || B[l] == B0[0]) << "padding lane " << l;
+        // The lanes' entries, bit for bit, in every implementation (padding lanes may differ).
+        std::vector<double> lanes;
+        for (std::size_t i = 0; i < nn; ++i) lanes.insert(lanes.end(), &B[i * stride], &B[i * stride] + count);
+        if (first) reference = lanes;
+        EXPECT_EQ(lanes, reference) << "differs from " << available_implementations()[0]->name;
+        first = false;
+      }
+    }
+  }
+}
+
+TEST(BatchBezoutMatrix, AnOverflowingEntryPoisonsItsLaneOnly) {
+  for (const Implementation* implementation : available_implementations()) {
+    SCOPED_TRACE(implementation->name);
+    const int n = 3;
+    const std::size_t count = 10, stride = batch_stride(count);
+    const std::vector<double> B0(9, 1.0), Bx(9, 2.0), By(9, -1.0), Bxy(9, 0.5);
+    std::vector<double> u(count, 0.25), v(count, -0.5), B(9 * stride), poison(count, kUnset);
+    u[3] = 1e300;  // u v Bxy and u Bx overflow: inf - inf somewhere, or inf
+    v[3] = 1e300;
+    implementation->bezout_matrix(n, count, stride, B0.data(), Bx.data(), By.data(), Bxy.data(), u.data(), v.data(),
+                                  B.data(), poison.data());
+    for (std::size_t l = 0; l < count; ++l) {
+      if (l == 3)
+        EXPECT_TRUE(std::isnan(poison[l]));
+      else
+        EXPECT_EQ(poison[l], 0.0) << "lane " << l;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bezinv::kernels
