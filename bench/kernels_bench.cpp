@@ -85,6 +85,27 @@ void BM_KernelNullVector(benchmark::State& state, const Implementation* impl, in
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
 }
 
+// Form B: the Bezout matrices of kDistinct points from one set of coefficient matrices (what the
+// engine does per batch), in batches of kBatch points. items_per_second = matrices per second.
+void BM_KernelBezoutMatrix(benchmark::State& state, const Implementation* impl, int n) {
+  std::mt19937_64 rng(7 + n);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const std::size_t nn = static_cast<std::size_t>(n) * n, stride = batch_stride(kBatch);
+  std::vector<double> B0(nn), Bx(nn), By(nn), Bxy(nn), u(kDistinct), v(kDistinct);
+  for (std::size_t i = 0; i < nn; ++i) B0[i] = unit(rng), Bx[i] = unit(rng), By[i] = unit(rng), Bxy[i] = unit(rng);
+  for (std::size_t l = 0; l < kDistinct; ++l) u[l] = unit(rng), v[l] = unit(rng);
+  std::vector<double> B(nn * stride), poison(kBatch);
+  std::size_t first = 0;
+  for (auto _ : state) {
+    impl->bezout_matrix(n, kBatch, stride, B0.data(), Bx.data(), By.data(), Bxy.data(), u.data() + first,
+                        v.data() + first, B.data(), poison.data());
+    benchmark::DoNotOptimize(B.data());
+    benchmark::ClobberMemory();
+    first = (first + kBatch) % kDistinct;
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+}
+
 // The baseline: Eigen's fixed-size self-adjoint eigensolver, one matrix per call.
 template <int N>
 void BM_KernelEigenSelfAdjoint(benchmark::State& state) {
@@ -115,6 +136,8 @@ int register_kernels() {
       const std::string null = std::string("BM_KernelNullVector").append(suffix);
       benchmark::RegisterBenchmark(svd.c_str(), BM_KernelSymmetricSvd, impl, n);
       benchmark::RegisterBenchmark(null.c_str(), BM_KernelNullVector, impl, n);
+      const std::string bezout = std::string("BM_KernelBezoutMatrix").append(suffix);
+      benchmark::RegisterBenchmark(bezout.c_str(), BM_KernelBezoutMatrix, impl, n);
     }
   return 0;
 }
