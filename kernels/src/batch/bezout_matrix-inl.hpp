@@ -28,6 +28,7 @@ void bezout_matrix_batch(int n, std::size_t count, std::size_t stride, const dou
   HWY_ALIGN double lanes[L];
   // The group's points, 0 past `count` (those lanes then get B0: finite, as the layout asks).
   auto load = [&](const double* p, std::size_t first) {
+    if (first + L <= count) return hn::LoadU(d, p + first);
     for (std::size_t l = 0; l < L; ++l) lanes[l] = first + l < count ? p[first + l] : 0.0;
     return hn::Load(d, lanes);
   };
@@ -45,8 +46,12 @@ void bezout_matrix_batch(int n, std::size_t count, std::size_t stride, const dou
         hn::StoreU(entry, d, B + i * stride + first);  // B need not be vector-aligned
         sum = hn::Add(sum, hn::Mul(entry, hn::Zero(d)));  // NaN once an entry is not finite
       }
-    hn::Store(sum, d, lanes);
-    std::copy_n(lanes, std::min(L, count - first), poison + first);
+    if (first + L <= count) {
+      hn::StoreU(sum, d, poison + first);
+    } else {
+      hn::Store(sum, d, lanes);
+      std::copy_n(lanes, count - first, poison + first);
+    }
   }
 }
 

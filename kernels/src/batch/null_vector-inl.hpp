@@ -317,11 +317,24 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
   result = hn::IfThenElse(zero_matrix, hn::Set(d, N == 1 ? 0.0 : 1.0), result);
   result = hn::IfThenElse(hn::Le(result, one), result, one);
 
-  HWY_ALIGN double defect_lanes[L], residual_lanes[L], next_lanes[L];
-  hn::Store(result, d, defect_lanes);
-  hn::Store(hn::IfThenElse(zero_matrix, hn::Zero(d), residual), d, residual_lanes);
+  const auto residual_out = hn::IfThenElse(zero_matrix, hn::Zero(d), residual);
   // A zero matrix has every direction null: no gap, unless n = 1 (nothing else to separate from).
   if constexpr (N > 1) next = hn::IfThenElse(zero_matrix, hn::Zero(d), next);
+  if (lanes == L) {  // a whole group: vector stores (lane by lane, the kernel was 5% slower at n = 3)
+    hn::StoreU(result, d, defect + first);
+    if (estimate) {
+      hn::StoreU(residual_out, d, estimate + first);
+      hn::StoreU(next, d, estimate + stride + first);
+    }
+    for (int r = 0; r < N; ++r) {
+      if (N > 1 && second) hn::StoreU(hn::Load(d, w_lanes + r * L), d, second + r * stride + first);
+      hn::StoreU(hn::Load(d, x + r * L), d, z + r * stride + first);
+    }
+    return;
+  }
+  HWY_ALIGN double defect_lanes[L], residual_lanes[L], next_lanes[L];
+  hn::Store(result, d, defect_lanes);
+  hn::Store(residual_out, d, residual_lanes);
   hn::Store(next, d, next_lanes);
   for (std::size_t l = 0; l < lanes; ++l) {
     defect[first + l] = defect_lanes[l];

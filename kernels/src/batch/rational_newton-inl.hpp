@@ -147,6 +147,7 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
   constexpr std::size_t L = hn::MaxLanes(D());
   HWY_ALIGN double buffer[L];
   auto load = [&](const double* p, double padding) {  // the group's lanes, then `padding`
+    if (lanes == L) return hn::LoadU(d, p + first);
     for (std::size_t l = 0; l < L; ++l) buffer[l] = l < lanes ? p[first + l] : padding;
     return hn::Load(d, buffer);
   };
@@ -244,10 +245,15 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
     result = hn::IfThenElse(final_distance, h, result);
   }
 
+  result = hn::IfThenElse(unsettled, hn::Set(d, std::numeric_limits<double>::quiet_NaN()), result);
+  if (lanes == L) {  // a whole group: vector stores; a lane left to the scalar code keeps its t
+    hn::StoreU(result, d, distance_out + first);
+    hn::StoreU(hn::IfThenElse(hn::IsNaN(result), t0, t), d, t_inout + first);
+    return;
+  }
   HWY_ALIGN double t_lanes[L], result_lanes[L];
   hn::Store(t, d, t_lanes);
-  hn::Store(hn::IfThenElse(unsettled, hn::Set(d, std::numeric_limits<double>::quiet_NaN()), result), d,
-            result_lanes);
+  hn::Store(result, d, result_lanes);
   for (std::size_t l = 0; l < lanes; ++l) {
     distance_out[first + l] = result_lanes[l];
     if (!std::isnan(result_lanes[l])) t_inout[first + l] = t_lanes[l];

@@ -64,6 +64,12 @@ HWY_INLINE void Store(const Vec<T>& a, T, double* HWY_RESTRICT p) {
   for (int g = 0; g < T::kVectors; ++g) hn::Store(a.v[g], typename T::D(), p + g * L);
 }
 
+template <class T>
+HWY_INLINE void StoreU(const Vec<T>& a, T, double* HWY_RESTRICT p) {
+  constexpr std::size_t L = hn::MaxLanes(typename T::D());
+  for (int g = 0; g < T::kVectors; ++g) hn::StoreU(a.v[g], typename T::D(), p + g * L);
+}
+
 template <class T> HWY_INLINE Vec<T> Add(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Add(a.v[g], b.v[g])); }
 template <class T> HWY_INLINE Vec<T> Sub(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Sub(a.v[g], b.v[g])); }
 template <class T> HWY_INLINE Vec<T> Mul(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Vec<T>, v[g] = hn::Mul(a.v[g], b.v[g])); }
@@ -94,6 +100,7 @@ template <class T> HWY_INLINE Vec<T> Neg(const Vec<T>& a) { BEZINV_WIDE_EACH(Vec
 template <class T> HWY_INLINE Mask<T> Ge(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Ge(a.v[g], b.v[g])); }
 template <class T> HWY_INLINE Mask<T> Lt(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Lt(a.v[g], b.v[g])); }
 template <class T> HWY_INLINE Mask<T> Ne(const Vec<T>& a, const Vec<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Ne(a.v[g], b.v[g])); }
+template <class T> HWY_INLINE Mask<T> IsNaN(const Vec<T>& a) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::IsNaN(a.v[g])); }
 template <class T> HWY_INLINE Mask<T> IsFinite(const Vec<T>& a) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::IsFinite(a.v[g])); }
 template <class T> HWY_INLINE Mask<T> And(const Mask<T>& a, const Mask<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::And(a.m[g], b.m[g])); }
 template <class T> HWY_INLINE Mask<T> Or(const Mask<T>& a, const Mask<T>& b) { BEZINV_WIDE_EACH(Mask<T>, m[g] = hn::Or(a.m[g], b.m[g])); }
