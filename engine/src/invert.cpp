@@ -479,7 +479,6 @@ void svd_path(const InversionPlan& plan, const double* B, const double* u, const
   clock.lap(&StageSeconds::decide);
 }
 
-
 // Runs the lanes waiting in this thread's queue (see SvdQueue).
 void flush_svd_queue(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages) {
   SvdQueue& queue = svd_queue();
