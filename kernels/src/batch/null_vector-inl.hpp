@@ -114,9 +114,10 @@ struct LaneLu {
   // The same solve written out (every loop unrolled), one native vector (lanes g..g+L1-1) at a
   // time: only then does GCC keep v in registers. Rolled, v lives on the stack and every update is
   // a store and a reload (perf: the solve was bound by those stores); written out, the kernel is
-  // 1.3-1.55x faster at n = 5..24 on AVX-512 and on AVX2 (1.07x at n = 3), with the same bits. A wide group's G x N vectors would not fit in the registers, hence one
-  // native vector at a time (the G of them still overlap in the out-of-order window). The pragma
-  // cannot take a template-dependent count (GCC 12 crashes), hence two copies of the loops.
+  // 1.3-1.55x faster at n = 5..24 on AVX-512 and on AVX2 (1.07x at n = 3), with the same bits. A
+  // wide group's G x N vectors would not fit in the registers, hence one native vector at a time
+  // (the G of them still overlap in the out-of-order window). The pragma cannot take a
+  // template-dependent count (GCC 12 crashes), hence two copies of the loops.
   template <class DN>
   HWY_INLINE void solve_unrolled(DN d, std::size_t g, double* HWY_RESTRICT x) {
     namespace hw = hwy::HWY_NAMESPACE;
@@ -337,7 +338,8 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
       hn::StoreU(next, d, estimate + stride + first);
     }
     for (int r = 0; r < N; ++r) {
-      if (N > 1 && second) hn::StoreU(hn::Load(d, w_lanes + r * L), d, second + r * stride + first);
+      if constexpr (N > 1)
+        if (second) hn::StoreU(hn::Load(d, w_lanes + r * L), d, second + r * stride + first);
       hn::StoreU(hn::Load(d, x + r * L), d, z + r * stride + first);
     }
     return;
