@@ -21,6 +21,7 @@
 #include "bezinv/kernels/symmetric_svd.hpp"
 #include "bezinv/null_vector.hpp"
 #include "bezinv/sylvester.hpp"
+#include "degree_drop.hpp"
 #include "refine.hpp"
 
 namespace bezinv {
@@ -72,36 +73,6 @@ PointPolynomials point_polynomials(const InversionPlan& plan, double u0, double 
     pq.q[i] = plan.y_num[i] - v0 * plan.y_den[i];
   }
   return pq;
-}
-
-// Paper Sect. 4: when the power-basis leading coefficients of p AND q both vanish, p and q share a
-// root at infinity and the Bezout matrix of formal degree n gains a null direction that is not a
-// point of the curve. The leading coefficient is affine in the point, from the plan's four.
-bool degree_drops(const InversionPlan& plan, const PointPolynomials& pq, double u0, double v0) {
-  const double lead_p = plan.lead_x_num - u0 * plan.lead_x_den;
-  const double lead_q = plan.lead_y_num - v0 * plan.lead_y_den;
-  return std::abs(lead_p) <= kDegreeDropRatio * power_leading_bound(pq.p_span()) &&
-         std::abs(lead_q) <= kDegreeDropRatio * power_leading_bound(pq.q_span());
-}
-
-// degree_drops for a whole batch at once (lanes innermost, so the loops vectorize); the same
-// operations in the same order per lane, so the same answers. drops[l] = 1 where p and q both drop.
-void degree_drops_batch(const InversionPlan& plan, const double* u, const double* v, std::size_t count,
-                        std::uint8_t* drops) {
-  std::array<double, kBatchLanes> bound_p{}, bound_q{};
-  for (int i = 0; i <= plan.degree; ++i) {
-    const double c = binomial(plan.degree, i);
-    const double xn = plan.x_num[i], xd = plan.x_den[i], yn = plan.y_num[i], yd = plan.y_den[i];
-    for (std::size_t l = 0; l < count; ++l) {
-      bound_p[l] += c * std::abs(xn - u[l] * xd);
-      bound_q[l] += c * std::abs(yn - v[l] * yd);
-    }
-  }
-  for (std::size_t l = 0; l < count; ++l) {
-    const double lead_p = plan.lead_x_num - u[l] * plan.lead_x_den;
-    const double lead_q = plan.lead_y_num - v[l] * plan.lead_y_den;
-    drops[l] = std::abs(lead_p) <= kDegreeDropRatio * bound_p[l] && std::abs(lead_q) <= kDegreeDropRatio * bound_q[l];
-  }
 }
 
 // p written at its true degree, in place: reduce while the leading power coefficient vanishes.
@@ -339,7 +310,7 @@ void decide(const InversionPlan& plan, double u0, double v0, const Candidate& ma
   }
   const bool look_for_second = have_svd && n >= 3 && r.sigma_next <= kSecondNullDirectionRatio;
   const PointPolynomials pq = point_polynomials(plan, u0, v0);
-  const bool drop = n >= 2 && degree_drops(plan, pq, u0, v0);
+  const bool drop = n >= 2 && detail::degree_drops(plan, u0, v0);
   const bool settled = count > 0 && candidates[0].on_segment && !look_for_second && !drop;
   if (!settled) {
     if (drop) add(sylvester_parameter(pq), Path::sylvester);
@@ -582,7 +553,7 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
       r.sigma_next = w.estimate[stride + l];
       w.active[l] = 0;
     };
-    degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
+    detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
     std::size_t near = 0, far = 0;  // roots queued at the front and at the back of w.root_*
     for (std::size_t l = 0; l < count; ++l) {
       w.pending[l] = 0;
