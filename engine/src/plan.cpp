@@ -89,7 +89,18 @@ InversionPlan make_plan(const Curve& curve) {
     for (int k = 0; k < 2; ++k) { lo[k] = std::min(lo[k], p[k]); hi[k] = std::max(hi[k], p[k]); }
   plan.diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
   plan.centre = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])};
-  plan.scale = plan.diagonal > 0 ? plan.diagonal : 1.0;
+  if (plan.diagonal > 0 && std::isfinite(plan.diagonal)) {
+    // diagonal = m 2^e with m in [0.5, 1); e clamped so that 2^-e is a double too (it is for
+    // diagonals from 1e-301 to the largest double, where the clamp does nothing).
+    int e = 0;
+    std::frexp(plan.diagonal, &e);
+    e = std::clamp(e, -1000, 1000);
+    plan.scale = std::ldexp(1.0, e);
+    plan.inverse_scale = std::ldexp(1.0, -e);
+  } else if (plan.diagonal > 0) {  // the box overflows: everything scales to 0, the curve is unusable
+    plan.scale = plan.diagonal;
+    plan.inverse_scale = 0.0;
+  }
 
   // Rotation (one denominator only): turn the principal axis of the control points to 45 degrees,
   // so neither coordinate of a straight segment is constant (a constant x makes p = X - x0 W

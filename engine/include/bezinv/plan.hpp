@@ -29,8 +29,12 @@ struct InversionPlan {
   // null vectors, the singular-value ratios and the algebraic parameter are the same; in floating point the
   // affine combination below no longer cancels digits for curves far from the origin, and a line
   // parallel to an axis no longer makes p identically zero.
+  // scale is the power of two in [diagonal, 2 diagonal) (1 for a curve of one point), so scaling
+  // adds no rounding, and dividing by it is multiplying by inverse_scale: the engine normalizes
+  // every point with a multiplication (perf at degree 3: normalizing took 2.2% of the pipeline
+  // with the division, 1.5% without).
   std::array<double, 2> centre{0.0, 0.0};
-  double scale = 1.0;
+  double scale = 1.0, inverse_scale = 1.0;
   double cos_rotation = 1.0, sin_rotation = 0.0;
 
   // The normalized curve at the effective degree (n+1 coefficients each).
@@ -59,7 +63,7 @@ struct InversionPlan {
   // Input coordinates -> normalized (inline: the engine normalizes whole batches in one loop).
   std::array<double, 2> normalize(double x, double y) const {
     const double dx = x - centre[0], dy = y - centre[1];
-    return {(cos_rotation * dx - sin_rotation * dy) / scale, (sin_rotation * dx + cos_rotation * dy) / scale};
+    return {(cos_rotation * dx - sin_rotation * dy) * inverse_scale, (sin_rotation * dx + cos_rotation * dy) * inverse_scale};
   }
   // P(t) in normalized coordinates.
   std::array<double, 2> normalized_point(double t) const;
