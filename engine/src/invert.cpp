@@ -196,10 +196,7 @@ struct BatchWorkspace {
   std::array<double, kBatchLanes> t_algebraic;
   // The fast path's lane-batched refinement: t and |P(t) - P0| (NaN where it left the lane to settle()).
   std::array<double, kBatchLanes> t_refined, distance;
-  // The fast path's second-parameter check: lanes waiting for it, and their roots (two at most).
-  std::array<std::uint8_t, kBatchLanes> pending, drops;
-  std::array<double, 2 * kBatchLanes> root_t, root_u, root_v, root_distance;
-  std::array<std::uint8_t, 2 * kBatchLanes> root_lane;
+  std::array<std::uint8_t, kBatchLanes> drops;
   std::array<Candidate, kBatchLanes> main;
   // Fast path (LU null vector): z, defect and the two sigma estimates, lane-major like sigma.
   std::vector<double> z = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
@@ -237,14 +234,52 @@ SvdQueue& svd_queue() {
   return queue;
 }
 
-// Empties this thread's queue when it goes out of scope: after the last flush it is empty anyway;
-// if an exception (bad_alloc) cut the work short, the waiting lanes point into the caller's
-// results and must not be run by a later call.
-struct SvdQueueScope {
-  SvdQueueScope() = default;
-  SvdQueueScope(const SvdQueueScope&) = delete;
-  SvdQueueScope& operator=(const SvdQueueScope&) = delete;
-  ~SvdQueueScope() { svd_queue().size = 0; }
+// The fast path's lanes that must look for a second parameter (see queue_second_parameters) wait
+// here, per thread, with their roots, until the roots fill a SIMD group of the Newton kernel: at
+// degree 3 0.8% of the lanes look (one root each), at degree 5 7%, at degree 8 19% (measured), so
+// a batch of kBatchLanes has 0.5, 4 and 12 roots, and checked batch by batch most of a group's
+// lanes idled (the kernel's 8-lane groups for those roots were 9-11% of the pipeline at degree 3,
+// perf; with the queue the pipeline is 4-7% faster at degrees 3-6 and 3% at 8, `bezinv profile`,
+// 1 thread, alternating). A lane is answered when the queue is flushed: ok on the fast path if none of its roots
+// refines onto the segment at a distinct parameter, else by the SVD path. Flushed once
+// kPairCheckFlushRoots roots wait, before a batch that might not fit, and at the end of each range
+// of batches, so it never outlives the plan it was filled for. A lane's answer does not depend on
+// the others of its group, so neither does it on the queue.
+constexpr std::size_t kPairCheckFlushRoots = 16;
+// Room for a whole batch besides the fewer than kPairCheckFlushRoots lanes left waiting.
+constexpr std::size_t kPairCheckLanes = 2 * kBatchLanes;
+
+struct PairCheckQueue {
+  // Lane k: its point, its answer if no second parameter is found (t, distance, the two sigma
+  // estimates), and where the answer goes.
+  std::array<double, kPairCheckLanes> u, v, t, distance, sigma_min, sigma_next;
+  std::array<PointResult*, kPairCheckLanes> target;
+  std::array<std::uint8_t, kPairCheckLanes> second_found;
+  std::size_t lanes = 0;
+  // The roots (two per lane at most): those near their lane's t from the front, the others from
+  // the back, so that the kernel's SIMD groups hold roots of similar work.
+  std::array<double, 2 * kPairCheckLanes> root_t, root_u, root_v, root_distance;
+  std::array<std::uint8_t, 2 * kPairCheckLanes> root_lane;
+  std::size_t near = 0, far = 0;
+};
+
+PairCheckQueue& pair_check_queue() {
+  thread_local PairCheckQueue queue;
+  return queue;
+}
+
+// Empties this thread's queues when it goes out of scope: after the last flush they are empty
+// anyway; if an exception (bad_alloc) cut the work short, the waiting lanes point into the
+// caller's results and must not be run by a later call.
+struct QueueScope {
+  QueueScope() = default;
+  QueueScope(const QueueScope&) = delete;
+  QueueScope& operator=(const QueueScope&) = delete;
+  ~QueueScope() {
+    svd_queue().size = 0;
+    PairCheckQueue& pairs = pair_check_queue();
+    pairs.lanes = pairs.near = pairs.far = 0;
+  }
 };
 
 // Stage 2 for a whole batch. Lane l's B is entry (r, c) at B[(r n + c) stride + l]; sigma and V
@@ -373,18 +408,15 @@ void decide(const InversionPlan& plan, double u0, double v0, const Candidate& ma
 }
 
 // The fast path's look for a second parameter (as decide() does with the SVD's two last singular
-// vectors): the parameters whose Bernstein vector lies in span{z, second} (lane l's kernel
-// vectors) are queued in w.root_*, for refinement along the segment.
+// vectors): the parameters whose Bernstein vector lies in span{z, second} (batch lane l's kernel
+// vectors) are queued in this thread's PairCheckQueue with the lane, for refinement along the
+// segment. Returns false, queueing nothing, when the lane has no root to check (only z's own).
 // Only a parameter on the segment matters here, so every root is refined along the segment (from
 // the nearer end if it lies outside), which is the part of settle() that can end on the segment.
 // settle()'s walk along the extension from a root far outside took most of the time of this check
 // (with it the check cost 57% of the pipeline at degree 8, measured); the SVD path still does
 // both, and tests/engine/invert_property_test.cpp checks that the two paths give the same statuses.
-//
-// Roots near the lane's t (which refine back to t in a step or two) are queued from the front,
-// the others (which walk, with line searches) from the back, so that the kernel's SIMD groups hold
-// lanes of similar work.
-void queue_second_parameters(int n, BatchWorkspace& w, std::size_t l, double t, std::size_t& near, std::size_t& far) {
+bool queue_second_parameters(int n, const BatchWorkspace& w, std::size_t l, const Candidate& c, PointResult* target) {
   std::array<double, kMaxDegree> z, second;
   for (int r = 0; r < n; ++r) {
     z[r] = w.z[r * kBatchLanes + l];
@@ -393,16 +425,41 @@ void queue_second_parameters(int n, BatchWorkspace& w, std::size_t l, double t, 
   double roots[2];
   const int count = parameters_from_null_space(std::span<const double>(z.data(), n),
                                                std::span<const double>(second.data(), n), roots);
+  PairCheckQueue& q = pair_check_queue();
+  const std::size_t lane = q.lanes;
+  bool queued = false;
   for (int i = 0; i < count; ++i) {
     const double start = std::clamp(roots[i], 0.0, 1.0);  // NaN stays NaN: not settled, refined to NaN
-    const double from_t = std::abs(start - t);
+    const double from_t = std::abs(start - c.t);
     if (from_t <= kSameRoot) continue;  // z's own root (see kSameRoot)
-    const std::size_t k = from_t <= kNearRoot ? near++ : w.root_t.size() - 1 - far++;
-    w.root_t[k] = start;
-    w.root_u[k] = w.u[l];
-    w.root_v[k] = w.v[l];
-    w.root_lane[k] = static_cast<std::uint8_t>(l);
+    const std::size_t k = from_t <= kNearRoot ? q.near++ : q.root_t.size() - 1 - q.far++;
+    q.root_t[k] = start;
+    q.root_u[k] = w.u[l];
+    q.root_v[k] = w.v[l];
+    q.root_lane[k] = static_cast<std::uint8_t>(lane);
+    queued = true;
   }
+  if (!queued) return false;
+  q.u[lane] = w.u[l];
+  q.v[lane] = w.v[l];
+  q.t[lane] = c.t;
+  q.distance[lane] = c.distance;
+  q.sigma_min[lane] = w.estimate[l];
+  q.sigma_next[lane] = w.estimate[kBatchLanes + l];
+  q.target[lane] = target;
+  ++q.lanes;
+  return true;
+}
+
+// The fast path's answer: ok, path bezout_lu, the sigma columns from the kernel's estimates.
+void answer_fast(const InversionPlan& plan, double t, double distance, double sigma_min, double sigma_next,
+                 PointResult& r) {
+  r.t = t;
+  r.residual = distance * plan.scale;
+  r.status = Status::ok;
+  r.path = Path::bezout_lu;
+  r.sigma_min = sigma_min;
+  r.sigma_next = sigma_next;
 }
 
 // Stages 2-5 for the m lanes the fast path left (all lanes without it), compacted: lane k's B is
@@ -461,9 +518,79 @@ void flush_svd_queue(const InversionPlan& plan, const InvertOptions& options, St
            batch_workspace(), clock);
 }
 
-// One batch (count <= kBatchLanes) of points of one curve through the five stages.
-void invert_batch(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
-                  const InvertOptions& options, StageSeconds* stages) {
+// Runs the second-parameter check for the lanes waiting in this thread's PairCheckQueue: a lane is
+// answered on the fast path unless one of its roots refines onto the segment, within the
+// tolerance, at a parameter distinct from its t; such a lane goes to the SVD path (double points
+// are always answered there), through the SVD queue.
+void flush_pair_check_queue(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages) {
+  PairCheckQueue& q = pair_check_queue();
+  if (q.lanes == 0) return;
+  StageClock clock(stages);
+  const double tolerance = options.relative_tolerance * plan.diagonal / plan.scale;
+  const kernels::RationalCurve curve = detail::kernel_curve(plan);
+  const std::size_t slots = q.root_t.size();
+  for (const std::size_t first : {std::size_t{0}, slots - q.far}) {
+    const std::size_t size = first == 0 ? q.near : q.far;
+    kernels::active_implementation().rational_newton(curve, detail::kNewtonSettings, size, q.root_u.data() + first,
+                                                     q.root_v.data() + first, q.root_t.data() + first,
+                                                     q.root_distance.data() + first);
+  }
+  std::fill_n(q.second_found.begin(), q.lanes, std::uint8_t{0});
+  for (std::size_t k = 0; k < slots; ++k) {
+    if (k == q.near) k = slots - q.far;
+    if (k == slots) break;
+    const std::size_t lane = q.root_lane[k];
+    detail::Refined r{q.root_t[k], q.root_distance[k]};
+    if (std::isnan(r.distance)) r = detail::refine_parameter(plan, q.root_u[k], q.root_v[k], q.root_t[k], true);
+    if (r.distance <= tolerance && std::abs(r.t - q.t[lane]) > kDistinctParameterGap) q.second_found[lane] = 1;
+  }
+  clock.lap(&StageSeconds::refine);
+  const std::size_t lanes = q.lanes;
+  q.lanes = q.near = q.far = 0;
+  // The lanes with a second parameter go to the SVD path through its queue, with their B formed
+  // again as invert_batch_lanes forms it (the same kernel, so the same bits) in the batch
+  // workspace, which is free between batches; kBatchLanes of them at a time.
+  const int n = plan.degree, nn = n * n;
+  SvdQueue& svd = svd_queue();
+  std::array<double, kBatchLanes> u, v, poison;
+  std::array<PointResult*, kBatchLanes> target;
+  for (std::size_t k = 0; k < lanes;) {
+    std::size_t m = 0;
+    for (; k < lanes && m < kBatchLanes; ++k) {
+      if (!q.second_found[k]) {
+        answer_fast(plan, q.t[k], q.distance[k], q.sigma_min[k], q.sigma_next[k], *q.target[k]);
+        continue;
+      }
+      u[m] = q.u[k];
+      v[m] = q.v[k];
+      target[m++] = q.target[k];
+    }
+    if (m == 0) continue;
+    BatchWorkspace& w = batch_workspace();
+    kernels::active_implementation().bezout_matrix(n, m, kBatchLanes, plan.B0.data(), plan.Bx.data(), plan.By.data(),
+                                                   plan.Bxy.data(), u.data(), v.data(), w.B.data(), poison.data());
+    for (std::size_t j = 0; j < m; ++j) {
+      if (svd.size == kBatchLanes) flush_svd_queue(plan, options, stages);  // uses w, but not w.B
+      for (int i = 0; i < nn; ++i) svd.B[i * kBatchLanes + svd.size] = w.B[i * kBatchLanes + j];
+      svd.u[svd.size] = u[j];
+      svd.v[svd.size] = v[j];
+      svd.target[svd.size] = target[j];
+      ++svd.size;
+    }
+  }
+  clock.lap(&StageSeconds::decide);
+}
+
+// Both queues, in this order (the pair check may hand lanes to the SVD path).
+void flush_queues(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages) {
+  flush_pair_check_queue(plan, options, stages);
+  flush_svd_queue(plan, options, stages);
+}
+
+// One batch (count <= kBatchLanes) of points of one curve through the five stages (but for the
+// lanes left waiting in this thread's queues).
+void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+                        const InvertOptions& options, StageSeconds* stages) {
   BatchWorkspace& w = batch_workspace();
   const int n = plan.degree, nn = n * n;
   const std::size_t stride = kBatchLanes;
@@ -543,20 +670,8 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
     const kernels::RationalCurve curve = detail::kernel_curve(plan);
     kernels::active_implementation().rational_newton(curve, detail::kNewtonSettings, count, w.u.data(), w.v.data(),
                                                      w.t_refined.data(), w.distance.data());
-    auto answer = [&](std::size_t l, const Candidate& c) {
-      PointResult& r = results[l];
-      r.t = c.t;
-      r.residual = c.distance * plan.scale;
-      r.status = Status::ok;
-      r.path = Path::bezout_lu;
-      r.sigma_min = w.estimate[l];
-      r.sigma_next = w.estimate[stride + l];
-      w.active[l] = 0;
-    };
     detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
-    std::size_t near = 0, far = 0;  // roots queued at the front and at the back of w.root_*
     for (std::size_t l = 0; l < count; ++l) {
-      w.pending[l] = 0;
       if (!std::isfinite(w.t_algebraic[l])) continue;
       Candidate& c = w.main[l];
       const bool at_end = w.t_refined[l] == 0.0 || w.t_refined[l] == 1.0;
@@ -570,32 +685,13 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
         c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
       }
       if (!c.on_segment || w.drops[l]) continue;
-      if (w.estimate[stride + l] >= kFastPathGapRatio || n < 3) {
-        answer(l, c);
-        continue;
-      }
-      queue_second_parameters(n, w, l, c.t, near, far);
-      w.pending[l] = 1;
+      // Answered now, or after the second-parameter check (flush_pair_check_queue): either way the
+      // lane leaves the batch.
+      w.active[l] = 0;
+      if ((w.estimate[stride + l] >= kFastPathGapRatio || n < 3) ||
+          !queue_second_parameters(n, w, l, c, &results[l]))
+        answer_fast(plan, c.t, c.distance, w.estimate[l], w.estimate[stride + l], results[l]);
     }
-    // The second-parameter check, for the queued roots at once: a lane is answered here unless one
-    // of its roots refines onto the segment, within the tolerance, at a parameter distinct from its t.
-    const std::size_t slots = w.root_t.size();
-    for (const std::size_t first : {std::size_t{0}, slots - far}) {
-      const std::size_t size = first == 0 ? near : far;
-      kernels::active_implementation().rational_newton(curve, detail::kNewtonSettings, size, w.root_u.data() + first,
-                                                       w.root_v.data() + first, w.root_t.data() + first,
-                                                       w.root_distance.data() + first);
-    }
-    for (std::size_t k = 0; k < slots; ++k) {
-      if (k == near) k = slots - far;
-      if (k == slots) break;
-      const std::size_t l = w.root_lane[k];
-      detail::Refined r{w.root_t[k], w.root_distance[k]};
-      if (std::isnan(r.distance)) r = detail::refine_parameter(plan, w.root_u[k], w.root_v[k], w.root_t[k], true);
-      if (r.distance <= tolerance && std::abs(r.t - w.main[l].t) > kDistinctParameterGap) w.pending[l] = 0;
-    }
-    for (std::size_t l = 0; l < count; ++l)
-      if (w.pending[l]) answer(l, w.main[l]);
     clock.lap(&StageSeconds::refine);
   }
 
@@ -633,6 +729,20 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
   if (queue.size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);
 }
 
+// One batch, with this thread's pair-check queue around it: flushed first if the batch's lanes
+// might not fit in it, and after once enough roots wait to fill a SIMD group (both outside
+// invert_batch_lanes, whose workspace the SVD path also uses).
+void invert_batch(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+                  const InvertOptions& options, StageSeconds* stages) {
+  PairCheckQueue& pairs = pair_check_queue();
+  if (pairs.lanes + count > kPairCheckLanes) flush_pair_check_queue(plan, options, stages);
+  invert_batch_lanes(plan, points, results, count, options, stages);
+  if (pairs.near + pairs.far >= kPairCheckFlushRoots) {
+    flush_pair_check_queue(plan, options, stages);
+    if (svd_queue().size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);
+  }
+}
+
 // All points of one curve: batches in parallel.
 void invert_curve(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
                   const InvertOptions& options, StageSeconds* stages);
@@ -646,9 +756,9 @@ std::string_view active_kernel_name() {
 
 PointResult invert_point(const InversionPlan& plan, Point point, const InvertOptions& options) {
   PointResult r;
-  const SvdQueueScope scope;
+  const QueueScope scope;
   invert_batch(plan, &point, &r, 1, options, nullptr);
-  flush_svd_queue(plan, options, nullptr);
+  flush_queues(plan, options, nullptr);
   return r;
 }
 
@@ -673,7 +783,7 @@ template <typename Body, typename EndOfRange>
 void for_each_batch(std::size_t count, const InvertOptions& options, Body&& body, EndOfRange&& end_of_range) {
   const std::size_t batches = (count + kBatchLanes - 1) / kBatchLanes;
   auto run = [&](const tbb::blocked_range<std::size_t>& range) {
-    const SvdQueueScope scope;
+    const QueueScope scope;
     for (std::size_t b = range.begin(); b != range.end(); ++b)
       body(b * kBatchLanes, std::min(count, (b + 1) * kBatchLanes));
     end_of_range();
@@ -695,7 +805,7 @@ void invert_curve(const InversionPlan& plan, std::span<const Point> points, std:
         invert_batch(plan, points.data() + begin, results.data() + begin, end - begin, options,
                      stages ? &per_thread.local() : nullptr);
       },
-      [&] { flush_svd_queue(plan, options, stages ? &per_thread.local() : nullptr); });
+      [&] { flush_queues(plan, options, stages ? &per_thread.local() : nullptr); });
   if (stages)
     for (const StageSeconds& s : per_thread) {
       stages->form_b += s.form_b; stages->kernel += s.kernel; stages->read_out += s.read_out;
