@@ -22,6 +22,7 @@
 #include "bezinv/null_vector.hpp"
 #include "bezinv/sylvester.hpp"
 #include "degree_drop.hpp"
+#include "isolation.hpp"
 #include "refine.hpp"
 
 namespace bezinv {
@@ -689,6 +690,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
       // lane leaves the batch.
       w.active[l] = 0;
       if ((w.estimate[stride + l] >= kFastPathGapRatio || n < 3) ||
+          detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance) ||
           !queue_second_parameters(n, w, l, c, &results[l]))
         answer_fast(plan, c.t, c.distance, w.estimate[l], w.estimate[stride + l], results[l]);
     }

@@ -10,6 +10,7 @@
 #include "bezinv/bezout.hpp"
 #include "bezinv/kernels/symmetric_svd.hpp"
 #include "bezinv/tolerances.hpp"
+#include "isolation.hpp"
 
 #include "refine.hpp"
 
@@ -178,6 +179,8 @@ InversionPlan make_plan(const Curve& curve) {
     plan.nearest_samples[2 * k] = p[0];
     plan.nearest_samples[2 * k + 1] = p[1];
   }
+
+  detail::isolation_pieces(plan);
 
   if (plan.diagonal == 0.0) {
     plan.usable = false;

@@ -1,0 +1,45 @@
+#pragma once
+// Whether a point of the curve is isolated: whether the curve comes within the tolerance of it
+// only on its own branch, around its own parameter (engine internal).
+//
+// The fast path must look for a second parameter where the SVD path would (a small sigma_{n-1}):
+// it refines the roots of span{z, second} along the segment, and most of them walk, in safeguarded
+// Newton steps, back to the point's own t. At degrees 15-20 those walks were a third of the whole
+// pipeline (measured). This certificate answers the same question without walking, from data
+// computed once per curve, in about as many operations as there are pieces:
+//
+//  1. Far from t. The curve is cut into kIsolationPieces pieces [j/K, (j+1)/K]. With positive
+//     weights each piece lies in the convex hull of its own control points, so in their box. If the
+//     box of every piece not next to t's is farther than the tolerance from P0, no parameter there
+//     can end within the tolerance.
+//  2. Around t (its piece and the two next to it, N). For a rational Bezier curve with positive
+//     weights, P' = (X'W - XW') / W^2 and
+//         X'W - XW' = sum_{i<j} w_i w_j (j - i) B_i B_j / (t (1 - t)) (P_j - P_i),
+//     a positive combination of the differences of the control points (of each piece, as a curve
+//     of its own). If all those differences lie within an angle alpha < 45 degrees of a direction
+//     c, any two tangents on N make an angle below 2 alpha, so for tau in N
+//         (P(tau) - P(t)) . P'(tau) >= cos(2 alpha) |P(tau) - P(t)| |P'(tau)|   (sign of tau - t)
+//     and |P(tau) - P(t)| >= v |tau - t| with v a lower bound of P' . c on N. A stationary point
+//     of the distance to P0 (|P(t) - P0| = d) then has cos(2 alpha) |P(tau) - P(t)| <= d, so
+//     |tau - t| <= d / (cos(2 alpha) v): below kDistinctParameterGap when d is small enough. Away
+//     from t the distance strictly decreases towards t, so a Newton walk that reaches N ends at t.
+// Together: no walk from any root can end within the tolerance at a parameter distinct from t.
+// Not certified (the roots are refined as before): separate denominators (the tangent formula
+// needs one W), a weight that is not positive, a piece of N that turns by 45 degrees or more, a
+// point off the curve by more than a sliver of kDistinctParameterGap, or a box near P0 (a second
+// branch passing close, which is what the check is for).
+#include "bezinv/plan.hpp"
+
+namespace bezinv::detail {
+
+inline constexpr int kIsolationPieces = 32;
+
+// Fills plan.isolation_boxes and plan.isolation_monotone from the normalized curve (make_plan).
+void isolation_pieces(InversionPlan& plan);
+
+// True when no parameter distinct from t (by more than kDistinctParameterGap) can be where a
+// refinement of the distance to (u0, v0) ends within `tolerance`; `distance` is |P(t) - (u0, v0)|,
+// all in normalized units. False whenever the certificate does not apply.
+bool isolated(const InversionPlan& plan, double u0, double v0, double t, double distance, double tolerance);
+
+}  // namespace bezinv::detail
