@@ -13,6 +13,7 @@
 #include "bezinv/bernstein.hpp"
 #include "bezinv/plan.hpp"
 #include "degree_drop.hpp"
+#include "support/random_plan.hpp"
 
 namespace bezinv {
 namespace {
@@ -20,16 +21,7 @@ namespace {
 // A plan with only what the degree-drop test reads: the degree, the four polynomials and their
 // leading power coefficients.
 InversionPlan random_plan(int n, bool common, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> coordinate(-1.0, 1.0), weight(0.5, 2.0);
-  InversionPlan plan;
-  plan.degree = n;
-  for (int i = 0; i <= n; ++i) {
-    const double w = weight(rng), w2 = common ? w : weight(rng);
-    plan.x_num.push_back(w * coordinate(rng));
-    plan.x_den.push_back(w);
-    plan.y_num.push_back(w2 * coordinate(rng));
-    plan.y_den.push_back(w2);
-  }
+  InversionPlan plan = test_support::random_polynomials_plan(n, common, rng);
   plan.lead_x_num = power_leading_coefficient(plan.x_num);
   plan.lead_x_den = power_leading_coefficient(plan.x_den);
   plan.lead_y_num = power_leading_coefficient(plan.y_num);

@@ -14,6 +14,7 @@
 #include "bezinv/kernels/batch.hpp"
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
+#include "support/random_plan.hpp"
 #include "refine.hpp"
 
 namespace bezinv {
@@ -25,19 +26,12 @@ TEST(Refine, KernelGivesTheScalarRefinementsBits) {
   const kernels::NewtonSettings settings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep, kNewtonMaxHalvings};
   for (const kernels::Implementation* implementation : kernels::available_implementations()) {
     std::mt19937_64 rng(42);
-    std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1.0, 1.0), weight(0.5, 2.0);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1.0, 1.0);
     int compared = 0, line_searches = 0;
     for (int n = 1; n <= 24; ++n)
       for (bool common : {true, false}) {
-        InversionPlan plan;  // refine_parameter reads only the degree and the four polynomials
-        plan.degree = n;
-        for (int i = 0; i <= n; ++i) {
-          const double w = weight(rng), w2 = common ? w : weight(rng);
-          plan.x_num.push_back(w * coordinate(rng));
-          plan.x_den.push_back(w);
-          plan.y_num.push_back(w2 * coordinate(rng));
-          plan.y_den.push_back(w2);
-        }
+        // refine_parameter reads only the degree and the four polynomials
+        const InversionPlan plan = test_support::random_polynomials_plan(n, common, rng);
         std::vector<double> u, v, t, distance;
         for (int k = 0; k < 37; ++k) {
           const double t_true = unit(rng);
