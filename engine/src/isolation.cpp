@@ -51,12 +51,23 @@ struct Piece {
 
 void isolation_pieces(InversionPlan& plan) {
   plan.isolation_boxes.clear();
+  plan.isolation_far.clear();
   plan.isolation_monotone.clear();
   const int n = plan.degree;
   if (n < 2 || !plan.common_denominator) return;
   constexpr int K = kIsolationPieces;
   std::vector<Piece> pieces(K);
-  plan.isolation_boxes.assign(4 * K, std::numeric_limits<double>::quiet_NaN());
+  // x centres, x half-widths, y centres, y half-widths, K each (the distance from a point to a box
+  // along x is then |x - centre| - half-width, or 0 inside). A piece with a weight that is not
+  // positive gets the whole plane: never farther than any tolerance.
+  const double inf = std::numeric_limits<double>::infinity();
+  plan.isolation_boxes.assign(4 * K, 0.0);
+  double* const x_centre = plan.isolation_boxes.data();
+  double* const x_half = x_centre + K;
+  double* const y_centre = x_centre + 2 * K;
+  double* const y_half = x_centre + 3 * K;
+  std::fill_n(x_half, K, inf);
+  std::fill_n(y_half, K, inf);
   for (int j = 0; j < K; ++j) {
     Piece& piece = pieces[j];
     const double a = static_cast<double>(j) / K, b = static_cast<double>(j + 1) / K;  // exact
@@ -64,7 +75,7 @@ void isolation_pieces(InversionPlan& plan) {
     piece.y = split(plan.y_num, a, b);
     piece.w = split(plan.x_den, a, b);
     piece.positive = true;
-    double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min, y_min = x_min, y_max = x_max;
+    double x_min = inf, x_max = -inf, y_min = inf, y_max = -inf;
     for (int i = 0; i <= n; ++i) {
       if (!(piece.w[i] > 0)) piece.positive = false;
       const double x = piece.x[i] / piece.w[i], y = piece.y[i] / piece.w[i];
@@ -75,11 +86,25 @@ void isolation_pieces(InversionPlan& plan) {
     // Room for the rounding of the split and the divisions (~n eps of the coordinates; 1e-12 is
     // far above it and far below any tolerance a point would be judged by).
     const double margin = 1e-12 * (1.0 + std::max({std::abs(x_min), std::abs(x_max), std::abs(y_min), std::abs(y_max)}));
-    plan.isolation_boxes[4 * j] = x_min - margin;
-    plan.isolation_boxes[4 * j + 1] = x_max + margin;
-    plan.isolation_boxes[4 * j + 2] = y_min - margin;
-    plan.isolation_boxes[4 * j + 3] = y_max + margin;
+    x_centre[j] = 0.5 * (x_min + x_max);
+    x_half[j] = 0.5 * (x_max - x_min) + margin;
+    y_centre[j] = 0.5 * (y_min + y_max);
+    y_half[j] = 0.5 * (y_max - y_min) + margin;
   }
+
+  // Per piece j, the distance from its box to the nearest box not next to it: P(t) lies in the box
+  // of t's piece, so no point of those pieces is nearer P0 than that less |P(t) - P0|. Most lanes
+  // are certified by this one comparison; the others test P0 against the boxes one by one.
+  plan.isolation_far.assign(K, inf);
+  for (int j = 0; j < K; ++j)
+    for (int q = 0; q < K; ++q) {
+      if (q >= j - 1 && q <= j + 1) continue;
+      double dx = std::abs(x_centre[j] - x_centre[q]) - x_half[j] - x_half[q];
+      double dy = std::abs(y_centre[j] - y_centre[q]) - y_half[j] - y_half[q];
+      dx = dx > 0 ? dx : 0.0;  // NaN (an infinite box) -> 0
+      dy = dy > 0 ? dy : 0.0;
+      plan.isolation_far[j] = std::min(plan.isolation_far[j], std::hypot(dx, dy));
+    }
 
   // Per piece j, over N = pieces j-1..j+1: cos(2 alpha) v (header), 0 where it does not apply.
   plan.isolation_monotone.assign(K, 0.0);
@@ -138,18 +163,25 @@ bool isolated(const InversionPlan& plan, double u0, double v0, double t, double 
   const int j = std::min(K - 1, static_cast<int>(t * K));
   // Around t: a stationary point of the distance lies within distance / monotone of t.
   if (!(distance < plan.isolation_monotone[j] * kDistinctParameterGap)) return false;
-  // Far from t: every other box farther than the tolerance (a NaN box fails the comparison).
   const double limit = tolerance * (1 + 1e-12);
-  const double limit2 = limit * limit;
-  bool far = true;
+  if (plan.isolation_far[j] - distance > limit) return true;
+  // Otherwise P0 itself against every box not next to t's: all farther than the tolerance. (Box by
+  // box, this is what took 8% of the pipeline at degree 8 before the comparison above, perf.)
+  const double* x_centre = plan.isolation_boxes.data();
+  const double* x_half = x_centre + K;
+  const double* y_centre = x_centre + 2 * K;
+  const double* y_half = x_centre + 3 * K;
+  std::array<double, K> distance2;
   for (int q = 0; q < K; ++q) {
-    const double* b = plan.isolation_boxes.data() + 4 * q;
-    const double dx = std::max({b[0] - u0, u0 - b[1], 0.0}), dy = std::max({b[2] - v0, v0 - b[3], 0.0});
-    const bool next_to_t = q >= j - 1 && q <= j + 1;
-    const bool box = !std::isnan(b[0]);  // NaN: a piece with a weight that is not positive
-    far = far && (next_to_t || (box && dx * dx + dy * dy > limit2));
+    double dx = std::abs(u0 - x_centre[q]) - x_half[q], dy = std::abs(v0 - y_centre[q]) - y_half[q];
+    dx = dx > 0 ? dx : 0.0;  // NaN (a NaN point) -> 0: inside every box, never certified
+    dy = dy > 0 ? dy : 0.0;
+    distance2[q] = dx * dx + dy * dy;
   }
-  return far;
+  const double limit2 = limit * limit;
+  for (int q = 0; q < K; ++q)
+    if (!(distance2[q] > limit2) && (q < j - 1 || q > j + 1)) return false;
+  return true;
 }
 
 }  // namespace bezinv::detail

@@ -36,8 +36,9 @@ TEST(Isolation, EveryPieceOfTheCurveLiesInItsBox) {
       const InversionPlan plan = make_plan(datasets::random_curve(CurveKind::rational_bezier, n, rng, polygon));
       ASSERT_EQ(plan.isolation_boxes.size(), 4u * K);
       for (int j = 0; j < K; ++j) {
-        const double* box = plan.isolation_boxes.data() + 4 * j;
-        ASSERT_FALSE(std::isnan(box[0])) << "positive weights, piece " << j;  // weights in [0.5, 2]
+        const double* b = plan.isolation_boxes.data();  // x centres, x half-widths, y centres, y half-widths
+        const double box[4] = {b[j] - b[K + j], b[j] + b[K + j], b[2 * K + j] - b[3 * K + j], b[2 * K + j] + b[3 * K + j]};
+        for (double side : box) ASSERT_TRUE(std::isfinite(side)) << "positive weights, piece " << j;  // in [0.5, 2]
         ++boxes;
         for (int s = 0; s <= 20; ++s) {
           const double t = (j + s / 20.0) / K;
