@@ -235,17 +235,19 @@ SvdQueue& svd_queue() {
   return queue;
 }
 
-// The fast path's lanes that must look for a second parameter (see queue_second_parameters) wait
-// here, per thread, with their roots, until the roots fill a SIMD group of the Newton kernel: at
-// degree 3 0.8% of the lanes look (one root each), at degree 5 7%, at degree 8 19% (measured), so
-// a batch of kBatchLanes has 0.5, 4 and 12 roots, and checked batch by batch most of a group's
-// lanes idled (the kernel's 8-lane groups for those roots were 9-11% of the pipeline at degree 3,
-// perf; with the queue the pipeline is 4-7% faster at degrees 3-6 and 3% at 8, `bezinv profile`,
-// 1 thread, alternating). A lane is answered when the queue is flushed: ok on the fast path if none of its roots
-// refines onto the segment at a distinct parameter, else by the SVD path. Flushed once
-// kPairCheckFlushRoots roots wait, before a batch that might not fit, and at the end of each range
-// of batches, so it never outlives the plan it was filled for. A lane's answer does not depend on
-// the others of its group, so neither does it on the queue.
+// The fast path's lanes that must look for a second parameter (see queue_second_parameters) and
+// are not certified isolated wait here, per thread, with their roots, until the roots fill a SIMD
+// group of the Newton kernel: at degree 3 0.8% of the lanes look (one root each), at degree 5 7%,
+// at degree 8 19% (measured), so a batch of kBatchLanes has 0.5, 4 and 12 roots, and checked batch
+// by batch most of a group's lanes idled (the kernel's 8-lane groups for those roots were 9-11% of
+// the pipeline at degree 3, perf; with the queue the pipeline is 4-7% faster at degrees 3-6 and 3%
+// at 8, `bezinv profile`, 1 thread, alternating; measured before the isolation certificate, which
+// now answers most of those lanes without their roots). A lane is answered when the queue is
+// flushed: ok on the fast path if none of its roots refines onto the segment at a distinct
+// parameter, else by the SVD path. Flushed once kPairCheckFlushRoots roots wait, before a batch
+// that might not fit, and at the end of each range of batches, so it never outlives the plan it
+// was filled for. A lane's answer does not depend on the others of its group, so neither does it
+// on the queue.
 constexpr std::size_t kPairCheckFlushRoots = 16;
 // Room for a whole batch besides the fewer than kPairCheckFlushRoots lanes left waiting.
 constexpr std::size_t kPairCheckLanes = 2 * kBatchLanes;

@@ -85,7 +85,8 @@ void isolation_pieces(InversionPlan& plan) {
     if (!piece.positive || !std::isfinite(x_min + x_max + y_min + y_max)) continue;
     // Room for the rounding of the split and the divisions (~n eps of the coordinates; 1e-12 is
     // far above it and far below any tolerance a point would be judged by).
-    const double margin = 1e-12 * (1.0 + std::max({std::abs(x_min), std::abs(x_max), std::abs(y_min), std::abs(y_max)}));
+    const double size = std::max({std::abs(x_min), std::abs(x_max), std::abs(y_min), std::abs(y_max)});
+    const double margin = 1e-12 * (1.0 + size);
     x_centre[j] = 0.5 * (x_min + x_max);
     x_half[j] = 0.5 * (x_max - x_min) + margin;
     y_centre[j] = 0.5 * (y_min + y_max);

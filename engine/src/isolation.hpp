@@ -6,7 +6,7 @@
 // it refines the roots of span{z, second} along the segment, and most of them walk, in safeguarded
 // Newton steps, back to the point's own t. At degrees 15-20 those walks were a third of the whole
 // pipeline (measured). This certificate answers the same question without walking, from data
-// computed once per curve, in about as many operations as there are pieces:
+// computed once per curve, in one comparison for most lanes (one per piece for the rest):
 //
 //  1. Far from t. The curve is cut into kIsolationPieces pieces [j/K, (j+1)/K]. With positive
 //     weights each piece lies in the convex hull of its own control points, so in their box. If the

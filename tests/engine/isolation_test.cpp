@@ -37,7 +37,8 @@ TEST(Isolation, EveryPieceOfTheCurveLiesInItsBox) {
       ASSERT_EQ(plan.isolation_boxes.size(), 4u * K);
       for (int j = 0; j < K; ++j) {
         const double* b = plan.isolation_boxes.data();  // x centres, x half-widths, y centres, y half-widths
-        const double box[4] = {b[j] - b[K + j], b[j] + b[K + j], b[2 * K + j] - b[3 * K + j], b[2 * K + j] + b[3 * K + j]};
+        const double box[4] = {b[j] - b[K + j], b[j] + b[K + j],  // x min, x max, y min, y max
+                               b[2 * K + j] - b[3 * K + j], b[2 * K + j] + b[3 * K + j]};
         for (double side : box) ASSERT_TRUE(std::isfinite(side)) << "positive weights, piece " << j;  // in [0.5, 2]
         ++boxes;
         for (int s = 0; s <= 20; ++s) {
