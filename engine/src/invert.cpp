@@ -55,6 +55,11 @@ namespace {
 
 using Coefficients = std::array<double, kMaxDegree + 1>;
 
+// The tolerance on |P(t) - P0| in normalized units.
+double normalized_tolerance(const InversionPlan& plan, const InvertOptions& options) {
+  return options.relative_tolerance * plan.diagonal / plan.scale;
+}
+
 // Points per batch (see "The pipeline" below).
 constexpr std::size_t kBatchLanes = 64;
 
@@ -228,6 +233,14 @@ struct SvdQueue {
   std::array<double, kBatchLanes> u, v;
   std::array<PointResult*, kBatchLanes> target;  // where lane k's answer goes
   std::size_t size = 0;
+
+  // Appends lane `lane` of the n x n matrices `from` (lane-major, stride kBatchLanes); size < kBatchLanes.
+  void push(int nn, const double* from, std::size_t lane, double lane_u, double lane_v, PointResult* answer) {
+    for (int i = 0; i < nn; ++i) B[i * kBatchLanes + size] = from[i * kBatchLanes + lane];
+    u[size] = lane_u;
+    v[size] = lane_v;
+    target[size++] = answer;
+  }
 };
 
 SvdQueue& svd_queue() {
@@ -332,7 +345,7 @@ class StageClock {
 void decide(const InversionPlan& plan, double u0, double v0, const Candidate& main, const double* sigma,
             const double* V, const InvertOptions& options, PointResult& r) {
   const int n = plan.degree;
-  const double tolerance = options.relative_tolerance * plan.diagonal / plan.scale;
+  const double tolerance = normalized_tolerance(plan, options);
   std::array<Candidate, 6> candidates;
   int count = 0;
   if (std::isfinite(main.t) || main.path != Path::none) candidates[count++] = main;
@@ -472,7 +485,7 @@ void svd_path(const InversionPlan& plan, const double* B, const double* u, const
               StageClock& clock) {
   const int n = plan.degree, nn = n * n;
   const std::size_t stride = kBatchLanes;
-  const double tolerance = options.relative_tolerance * plan.diagonal / plan.scale;
+  const double tolerance = normalized_tolerance(plan, options);
   // 2. kernel.
   if (n >= 2 && m > 0) batch_symmetric_svd(n, m, stride, B, w.sigma.data(), w.V.data());
   clock.lap(&StageSeconds::kernel);
@@ -529,7 +542,7 @@ void flush_pair_check_queue(const InversionPlan& plan, const InvertOptions& opti
   PairCheckQueue& q = pair_check_queue();
   if (q.lanes == 0) return;
   StageClock clock(stages);
-  const double tolerance = options.relative_tolerance * plan.diagonal / plan.scale;
+  const double tolerance = normalized_tolerance(plan, options);
   const kernels::RationalCurve curve = detail::kernel_curve(plan);
   const std::size_t slots = q.root_t.size();
   for (const std::size_t first : {std::size_t{0}, slots - q.far}) {
@@ -574,11 +587,7 @@ void flush_pair_check_queue(const InversionPlan& plan, const InvertOptions& opti
                                                    plan.Bxy.data(), u.data(), v.data(), w.B.data(), poison.data());
     for (std::size_t j = 0; j < m; ++j) {
       if (svd.size == kBatchLanes) flush_svd_queue(plan, options, stages);  // uses w, but not w.B
-      for (int i = 0; i < nn; ++i) svd.B[i * kBatchLanes + svd.size] = w.B[i * kBatchLanes + j];
-      svd.u[svd.size] = u[j];
-      svd.v[svd.size] = v[j];
-      svd.target[svd.size] = target[j];
-      ++svd.size;
+      svd.push(nn, w.B.data(), j, u[j], v[j], target[j]);
     }
   }
   clock.lap(&StageSeconds::decide);
@@ -597,7 +606,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
   BatchWorkspace& w = batch_workspace();
   const int n = plan.degree, nn = n * n;
   const std::size_t stride = kBatchLanes;
-  const double tolerance = options.relative_tolerance * plan.diagonal / plan.scale;
+  const double tolerance = normalized_tolerance(plan, options);
   StageClock clock(stages);
 
   // 1. form B. Lanes that are already answered (bad input, unusable curve) are given B = identity
@@ -723,12 +732,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     svd_path(plan, w.B.data(), w.u.data(), w.v.data(), target.data(), m, options, w, clock);
     return;
   }
-  for (std::size_t k = 0; k < m; ++k, ++queue.size) {
-    for (int i = 0; i < nn; ++i) queue.B[i * stride + queue.size] = w.B[i * stride + k];
-    queue.u[queue.size] = w.u[k];
-    queue.v[queue.size] = w.v[k];
-    queue.target[queue.size] = &results[w.lane_of[k]];
-  }
+  for (std::size_t k = 0; k < m; ++k) queue.push(nn, w.B.data(), k, w.u[k], w.v[k], &results[w.lane_of[k]]);
   clock.lap(&StageSeconds::decide);
   if (queue.size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);
 }
