@@ -53,6 +53,7 @@ void isolation_pieces(InversionPlan& plan) {
   plan.isolation_boxes.clear();
   plan.isolation_far.clear();
   plan.isolation_monotone.clear();
+  plan.isolation_unique.clear();
   const int n = plan.degree;
   if (n < 2 || !plan.common_denominator) return;
   constexpr int K = kIsolationPieces;
@@ -107,8 +108,10 @@ void isolation_pieces(InversionPlan& plan) {
       plan.isolation_far[j] = std::min(plan.isolation_far[j], std::hypot(dx, dy));
     }
 
-  // Per piece j, over N = pieces j-1..j+1: cos(2 alpha) v (header), 0 where it does not apply.
+  // Per piece j, over N = pieces j-1..j+1: cos(2 alpha) v and the distance below which the
+  // distance has one stationary point on N (header), 0 where they do not apply.
   plan.isolation_monotone.assign(K, 0.0);
+  plan.isolation_unique.assign(K, 0.0);
   for (int j = 0; j < K; ++j) {
     const int first = std::max(0, j - 1), last = std::min(K - 1, j + 1);
     bool usable = true;
@@ -122,7 +125,8 @@ void isolation_pieces(InversionPlan& plan) {
     if (!(chord > 0)) continue;
     cx /= chord;
     cy /= chord;
-    double cos_alpha = 1.0, speed = std::numeric_limits<double>::infinity();
+    // speed and bend in the piece's own parameter s = K t - q: dP/ds = dP/dt / K.
+    double cos_alpha = 1.0, speed = std::numeric_limits<double>::infinity(), bend = 0.0;
     for (int q = first; q <= last; ++q) {
       const Piece& p = pieces[q];
       // The angle of every difference of control points with c.
@@ -146,15 +150,40 @@ void isolation_pieces(InversionPlan& plan) {
       multiply_add(p.x.data(), n, dw.data(), n - 1, -1.0, hx.data());
       multiply_add(dy.data(), n - 1, p.w.data(), n, 1.0, hy.data());
       multiply_add(p.y.data(), n, dw.data(), n - 1, -1.0, hy.data());
-      double h_min = std::numeric_limits<double>::infinity(), w_max = 0.0;
-      for (int k = 0; k <= 2 * n - 1; ++k) h_min = std::min(h_min, hx[k] * cx + hy[k] * cy);
-      for (int i = 0; i <= n; ++i) w_max = std::max(w_max, p.w[i]);
+      double h_min = std::numeric_limits<double>::infinity(), h_max = 0.0, w_max = 0.0,
+             w_min = std::numeric_limits<double>::infinity(), dw_max = 0.0;
+      for (int k = 0; k <= 2 * n - 1; ++k) {
+        h_min = std::min(h_min, hx[k] * cx + hy[k] * cy);
+        h_max = std::max(h_max, std::hypot(hx[k], hy[k]));
+      }
+      for (int i = 0; i <= n; ++i) w_max = std::max(w_max, p.w[i]), w_min = std::min(w_min, p.w[i]);
+      for (int i = 0; i < n; ++i) dw_max = std::max(dw_max, std::abs(dw[i]));
       speed = std::min(speed, h_min / (w_max * w_max));
+      // |P''| <= (|G| W + 2 |W'| |H|) / W^3 with G = H' = X''W - XW'' (degree 2n - 2): each
+      // polynomial bounded by its largest Bernstein coefficient, W from below by its smallest.
+      std::array<double, kMaxDegree> ddx{}, ddy{}, ddw{};
+      for (int i = 0; i + 1 < n; ++i) {
+        ddx[i] = (n - 1) * (dx[i + 1] - dx[i]);
+        ddy[i] = (n - 1) * (dy[i + 1] - dy[i]);
+        ddw[i] = (n - 1) * (dw[i + 1] - dw[i]);
+      }
+      std::array<double, 2 * kMaxDegree> gx{}, gy{};
+      multiply_add(ddx.data(), n - 2, p.w.data(), n, 1.0, gx.data());
+      multiply_add(p.x.data(), n, ddw.data(), n - 2, -1.0, gx.data());
+      multiply_add(ddy.data(), n - 2, p.w.data(), n, 1.0, gy.data());
+      multiply_add(p.y.data(), n, ddw.data(), n - 2, -1.0, gy.data());
+      double g_max = 0.0;
+      for (int k = 0; k <= 2 * n - 2; ++k) g_max = std::max(g_max, std::hypot(gx[k], gy[k]));
+      bend = std::max(bend, (g_max * w_max + 2 * dw_max * h_max) / (w_min * w_min * w_min));
     }
     const double cos_2alpha = 2 * cos_alpha * cos_alpha - 1;
-    // Half of it: room for the rounding of all the above (relative errors ~n^2 eps).
-    if (cos_alpha > 0 && cos_2alpha > 0 && speed > 0 && std::isfinite(speed))
-      plan.isolation_monotone[j] = 0.5 * cos_2alpha * speed;
+    // Half of each: room for the rounding of all the above (relative errors ~n^2 eps). In t:
+    // dP/dt = K dP/ds, d2P/dt2 = K^2 d2P/ds2, so the ratio below is the same in s and in t.
+    if (cos_alpha > 0 && cos_2alpha > 0 && speed > 0 && std::isfinite(speed)) {
+      plan.isolation_monotone[j] = 0.5 * cos_2alpha * K * speed;
+      const double unique = 0.5 * speed * speed / ((1 + 1 / cos_2alpha) * bend);
+      if (std::isfinite(unique)) plan.isolation_unique[j] = unique;
+    }
   }
 }
 
@@ -162,8 +191,10 @@ bool isolated(const InversionPlan& plan, double u0, double v0, double t, double 
   constexpr int K = kIsolationPieces;
   if (plan.isolation_monotone.empty() || !(t >= 0.0 && t <= 1.0)) return false;
   const int j = std::min(K - 1, static_cast<int>(t * K));
-  // Around t: a stationary point of the distance lies within distance / monotone of t.
-  if (!(distance < plan.isolation_monotone[j] * kDistinctParameterGap)) return false;
+  // Around t: every stationary point of the distance on N lies within distance / monotone of t,
+  // and below isolation_unique there is only one, t itself.
+  if (!(distance < plan.isolation_monotone[j] * kDistinctParameterGap) && !(distance < plan.isolation_unique[j]))
+    return false;
   const double limit = tolerance * (1 + 1e-12);
   if (plan.isolation_far[j] - distance > limit) return true;
   // Otherwise P0 itself against every box not next to t's: all farther than the tolerance. (Box by

@@ -23,18 +23,28 @@
 //     of the distance to P0 (|P(t) - P0| = d) then has cos(2 alpha) |P(tau) - P(t)| <= d, so
 //     |tau - t| <= d / (cos(2 alpha) v): below kDistinctParameterGap when d is small enough. Away
 //     from t the distance strictly decreases towards t, so a Newton walk that reaches N ends at t.
+//  3. Off the curve (d larger than that sliver): one stationary point on N. Two local minima of
+//     f(tau) = |P(tau) - P0|^2 on N would have a stationary point between them with f'' <= 0.
+//     Every stationary point tau has |P(tau) - P(t)| <= d / cos(2 alpha) (above), so there
+//         f'' / 2 = |P'|^2 + (P - P0) . P'' >= v^2 - d (1 + 1 / cos(2 alpha)) M,
+//     M a bound of |P''| on N: positive when d < v^2 / ((1 + 1 / cos(2 alpha)) M). Then every
+//     stationary point on N is a strict minimum, so there is only one, and t is it (t is where a
+//     refinement ended: a stationary point, or an end of the segment, where the walks stop too).
+//     M comes from P'' = (G W - 2 W' H) / W^3, H = X'W - XW' and G = H' = X''W - XW'', each
+//     bounded by its largest Bernstein coefficient and W from below by its smallest.
 // Together: no walk from any root can end within the tolerance at a parameter distinct from t.
 // Not certified (the roots are refined as before): separate denominators (the tangent formula
 // needs one W), a weight that is not positive, a piece of N that turns by 45 degrees or more, a
-// point off the curve by more than a sliver of kDistinctParameterGap, or a box near P0 (a second
-// branch passing close, which is what the check is for).
+// point off the curve by more than 3. allows (about a quarter of the radius of curvature, or
+// less), or a box near P0 (a second branch passing close, which is what the check is for).
 #include "bezinv/plan.hpp"
 
 namespace bezinv::detail {
 
 inline constexpr int kIsolationPieces = 32;
 
-// Fills plan.isolation_boxes and plan.isolation_monotone from the normalized curve (make_plan).
+// Fills plan.isolation_boxes, isolation_far, isolation_monotone and isolation_unique from the
+// normalized curve (make_plan).
 void isolation_pieces(InversionPlan& plan);
 
 // True when no parameter distinct from t (by more than kDistinctParameterGap) can be where a

@@ -1,14 +1,17 @@
 // engine/src/isolation.cpp: the certificate that lets the fast path skip its second-parameter walks.
 // What it promises is checked directly, against the walks it replaces and against the curve:
 //   - every piece of the curve lies in its box;
-//   - around each piece, the curve is as monotone as the stored bound says;
+//   - around each piece, the curve is as monotone as the stored bound says, and below the stored
+//     distance the distance from a point to the curve has one minimum there;
 //   - where a point is certified, no refinement of the distance (refine_parameter, the walk the
 //     fast path would run from each root) started anywhere on [0, 1] ends within the tolerance at
-//     a parameter distinct from t;
+//     a parameter distinct from t, for points on the curve and off it;
 //   - at a double point, and next to one, nothing is certified.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <utility>
@@ -84,6 +87,50 @@ TEST(Isolation, TheCurveIsAsMonotoneAroundEachPieceAsItsBoundSays) {
   EXPECT_GT(bounded, 100);
 }
 
+// Below isolation_unique, the squared distance to P0 has one local minimum on N (pieces j-1..j+1),
+// checked on a fine grid. The points are placed on the inner side of the curve, as far as the bound
+// allows or just past the centre of curvature, whichever is nearer: a bound too large (a bend
+// underestimated) lets the second point through, and past the centre of a curvature maximum the
+// distance has two minima.
+TEST(Isolation, BelowTheUniquenessBoundTheDistanceHasOneMinimumAroundEachPiece) {
+  std::mt19937_64 rng(12);
+  int bounded = 0, checked = 0;
+  for (int n = 2; n <= 20; ++n)
+    for (auto polygon : {datasets::ControlPolygon::unit_square, datasets::ControlPolygon::perturbed_arc}) {
+      const InversionPlan plan = make_plan(datasets::random_curve(CurveKind::rational_bezier, n, rng, polygon));
+      for (int j = 0; j < K; ++j) {
+        const double unique = plan.isolation_unique[j];
+        ASSERT_GE(unique, 0.0);
+        if (unique == 0) continue;
+        ++bounded;
+        const double lo = std::max(0, j - 1) / double(K), hi = std::min(K, j + 2) / double(K);
+        for (int k = 0; k < 6; ++k) {
+          const double t = datasets::uniform(rng, j / double(K), (j + 1) / double(K));
+          const detail::CurveJet jet = detail::curve_jet(plan, t);
+          const double speed = std::hypot(jet.dx, jet.dy);
+          const double kappa = (jet.dx * jet.ddy - jet.dy * jet.ddx) / (speed * speed * speed);
+          const double side = kappa >= 0 ? 1.0 : -1.0;
+          const double radius = kappa != 0 ? 1 / std::abs(kappa) : std::numeric_limits<double>::infinity();
+          const double off = std::min(0.99 * unique, 1.02 * radius) * (k % 3 == 0 ? 0.5 : 1.0);
+          const double u0 = jet.x - side * off * jet.dy / speed, v0 = jet.y + side * off * jet.dx / speed;
+          constexpr int kGrid = 800;
+          std::vector<double> f(kGrid + 1);
+          for (int g = 0; g <= kGrid; ++g) {
+            const auto p = plan.normalized_point(lo + (hi - lo) * g / kGrid);
+            f[g] = (p[0] - u0) * (p[0] - u0) + (p[1] - v0) * (p[1] - v0);
+          }
+          int minima = 0;
+          for (int g = 1; g < kGrid; ++g) minima += f[g] < f[g - 1] && f[g] <= f[g + 1];
+          EXPECT_LE(minima, 1) << "n " << n << " piece " << j << " t " << t << " off " << off << " radius " << radius;
+          ++checked;
+        }
+      }
+    }
+  RecordProperty("pieces_with_a_bound", bounded);
+  RecordProperty("points_checked", checked);
+  EXPECT_GT(bounded, 300);
+}
+
 // The promise itself, on curves that loop and cross (random control points in a square) and with a
 // loose tolerance, so that other branches often come within it.
 TEST(Isolation, NoWalkEndsWithinTheToleranceAwayFromACertifiedParameter) {
@@ -117,6 +164,59 @@ TEST(Isolation, NoWalkEndsWithinTheToleranceAwayFromACertifiedParameter) {
   RecordProperty("refused", refused);
   EXPECT_GT(certified, 100);
   EXPECT_GT(refused, 50);  // the loose tolerances and the loops must refuse some
+}
+
+// The same promise for points off the curve (along the normal, either side, up to 0.9 of the
+// tolerance): there the certificate rests on isolation_unique, the distance below which the
+// distance function has one stationary point around t. Near a tight bend, on its inner side, a
+// point past the centre of curvature has two nearest parameters; this is what the bound must refuse.
+TEST(Isolation, NoWalkEndsWithinTheToleranceAwayFromACertifiedParameterOffTheCurve) {
+  std::mt19937_64 rng(11);
+  int certified = 0, certified_by_uniqueness = 0, refused = 0, past_centre = 0;
+  for (int n : {2, 3, 4, 5, 6, 8, 10, 12, 15, 20})
+    for (int c = 0; c < 6; ++c) {
+      const InversionPlan plan =
+          make_plan(datasets::random_curve(CurveKind::rational_bezier, n, rng, datasets::ControlPolygon::unit_square));
+      for (double relative_tolerance : {1e-6, 1e-3, 3e-2}) {
+        const double tolerance = relative_tolerance * plan.diagonal / plan.scale;
+        for (int k = 0; k < 12; ++k) {
+          const double t = datasets::uniform(rng, 0.0, 1.0);
+          const auto p = plan.normalized_point(t);
+          const detail::CurveJet jet = detail::curve_jet(plan, t);
+          const double speed = std::hypot(jet.dx, jet.dy);
+          // Every other point: on the inner side, just past the centre of curvature (radius
+          // 1 / kappa, kappa = (P' x P'') / |P'|^3) when that is within the tolerance.
+          double off = datasets::uniform(rng, -0.9, 0.9) * tolerance;
+          const double kappa = (jet.dx * jet.ddy - jet.dy * jet.ddx) / (speed * speed * speed);
+          if (k % 2 == 1 && 1.05 / std::abs(kappa) < 0.9 * tolerance) {
+            off = std::copysign(1.05 / std::abs(kappa), kappa);
+            ++past_centre;
+          }
+          const double u0 = p[0] - off * jet.dy / speed, v0 = p[1] + off * jet.dx / speed;
+          const detail::Refined own = detail::refine_parameter(plan, u0, v0, t, true);
+          if (!detail::isolated(plan, u0, v0, own.t, own.distance, tolerance)) {
+            ++refused;
+            continue;
+          }
+          ++certified;
+          const int j = std::min(K - 1, static_cast<int>(own.t * K));
+          if (!(own.distance < plan.isolation_monotone[j] * kDistinctParameterGap)) ++certified_by_uniqueness;
+          for (int s = 0; s <= 100; ++s) {
+            const detail::Refined r = detail::refine_parameter(plan, u0, v0, s / 100.0, true);
+            const bool second = r.distance <= tolerance && std::abs(r.t - own.t) > kDistinctParameterGap;
+            EXPECT_FALSE(second) << "n " << n << " t " << own.t << " (distance " << own.distance << ") walk from "
+                                 << s / 100.0 << " ends at " << r.t << ", distance " << r.distance << " <= " << tolerance;
+          }
+        }
+      }
+    }
+  RecordProperty("certified", certified);
+  RecordProperty("certified_by_uniqueness", certified_by_uniqueness);
+  RecordProperty("refused", refused);
+  RecordProperty("past_the_centre_of_curvature", past_centre);
+  EXPECT_GT(certified_by_uniqueness, 100);
+  EXPECT_GT(past_centre, 20);
+  EXPECT_GT(refused, 50);
 }
 
 // At a double point (the two branches through one point) and next to it nothing is certified,
@@ -164,8 +264,8 @@ TEST(Isolation, NotForSeparateDenominatorsOrOffTheCurve) {
   ASSERT_GT(plan.isolation_monotone[j], 0.0);
   const auto q = plan.normalized_point(0.3);
   EXPECT_TRUE(detail::isolated(plan, q[0], q[1], 0.3, 0.0, 1e-6));
-  // A point off the curve by more than the bound allows: not certified, however isolated.
-  const double off = 2 * plan.isolation_monotone[j] * kDistinctParameterGap;
+  // A point off the curve by more than the bounds allow: not certified, however isolated.
+  const double off = 2 * std::max(plan.isolation_monotone[j] * kDistinctParameterGap, plan.isolation_unique[j]);
   EXPECT_FALSE(detail::isolated(plan, q[0], q[1], 0.3, off, 1e-6));
   EXPECT_FALSE(detail::isolated(plan, q[0], q[1], std::nan(""), 0.0, 1e-6));
 }
