@@ -467,15 +467,44 @@ bool queue_second_parameters(int n, const BatchWorkspace& w, std::size_t l, cons
   return true;
 }
 
-// The fast path's answer: ok, path bezout_lu, the sigma columns from the kernel's estimates.
+// The fast path's answer: ok (or off_curve, see off_curve_certified), path bezout_lu, the sigma
+// columns from the kernel's estimates.
 void answer_fast(const InversionPlan& plan, double t, double distance, double sigma_min, double sigma_next,
-                 PointResult& r) {
+                 PointResult& r, Status status = Status::ok) {
   r.t = t;
   r.residual = distance * plan.scale;
-  r.status = Status::ok;
+  r.status = status;
   r.path = Path::bezout_lu;
   r.sigma_min = sigma_min;
   r.sigma_next = sigma_next;
+}
+
+// Whether the fast path may answer lane l off_curve at its refined parameter, as the SVD path
+// would after its search for the nearest point of the segment. The lane's refinement ended inside
+// (0, 1) farther than the tolerance from P0, at a stationary point of the distance (checked: the
+// refinement may also stop on its iteration cap), and:
+//   - the SVD path would have no other candidate: no degree drop (the caller), and no second
+//     parameter looked for (the sigma_{n-1} estimate clears kFastPathGapRatio, as for the on-curve
+//     lanes), so it would go on to the nearest-point search;
+//   - that search can only find t: the isolation certificate with the lane's own distance for the
+//     tolerance says that no point of the segment outside t's neighbourhood is as near as P(t),
+//     and that inside it the distance has t for its only stationary point, falling towards it on
+//     both sides (engine/src/isolation.hpp), so no end of the segment there is nearer either.
+// Both paths then give the same t up to the last bits of the refinement, and the same status.
+// Stationary: cos(P(t) - P0, P'(t)) <= kStationaryCosine. The stationary point tau* the search
+// would find is then within 2 cos d |P'| / v^2 of t (f' = 2 cos d |P'| at t, and f'' >= v^2 on
+// the neighbourhood below isolation_unique), ~1e-13 for d = 1e-5 of the curve's size; Newton's
+// last step leaves cos at the rounding of P(t) - P0, ~1e-16 / d.
+constexpr double kStationaryCosine = 1e-8;
+bool off_curve_certified(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, const Candidate& c,
+                         double tolerance) {
+  const int n = plan.degree;
+  if (c.on_curve || !(c.t > 0.0 && c.t < 1.0) || !std::isfinite(c.distance)) return false;
+  if (n >= 3 && !(w.estimate[kBatchLanes + l] >= kFastPathGapRatio)) return false;
+  if (!detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, std::max(c.distance, tolerance))) return false;
+  const detail::CurveJet jet = detail::curve_jet(plan, c.t);
+  const double along = (jet.x - w.u[l]) * jet.dx + (jet.y - w.v[l]) * jet.dy;
+  return std::abs(along) <= kStationaryCosine * c.distance * std::hypot(jet.dx, jet.dy);
 }
 
 // Stages 2-5 for the m lanes the fast path left (all lanes without it), compacted: lane k's B is
@@ -696,7 +725,14 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
       } else {
         c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
       }
-      if (!c.on_segment || w.drops[l]) continue;
+      if (w.drops[l]) continue;
+      if (!c.on_segment) {
+        if (off_curve_certified(plan, w, l, c, tolerance)) {
+          w.active[l] = 0;
+          answer_fast(plan, c.t, c.distance, w.estimate[l], w.estimate[stride + l], results[l], Status::off_curve);
+        }
+        continue;
+      }
       // Answered now, or after the second-parameter check (flush_pair_check_queue): either way the
       // lane leaves the batch.
       w.active[l] = 0;
