@@ -32,6 +32,29 @@ namespace {
 
 constexpr int K = detail::kIsolationPieces;
 
+// Random curves of degrees first..last, one per kind of control polygon: f(n, plan).
+template <class F>
+void for_each_random_plan(std::mt19937_64& rng, int first, int last, F&& f) {
+  for (int n = first; n <= last; ++n)
+    for (auto polygon : {datasets::ControlPolygon::unit_square, datasets::ControlPolygon::perturbed_arc})
+      f(n, make_plan(datasets::random_curve(CurveKind::rational_bezier, n, rng, polygon)));
+}
+
+// N, the parameters of pieces j-1..j+1, where piece j's bounds hold.
+std::pair<double, double> around_piece(int j) {
+  return {std::max(0, j - 1) / double(K), std::min(K, j + 2) / double(K)};
+}
+
+// The signed curvature P' x P'' / |P'|^3 at a jet, and the point `off` along its left normal.
+double curvature(const detail::CurveJet& jet) {
+  const double speed = std::hypot(jet.dx, jet.dy);
+  return (jet.dx * jet.ddy - jet.dy * jet.ddx) / (speed * speed * speed);
+}
+std::array<double, 2> along_normal(const detail::CurveJet& jet, double off) {
+  const double speed = std::hypot(jet.dx, jet.dy);
+  return {jet.x - off * jet.dy / speed, jet.y + off * jet.dx / speed};
+}
+
 TEST(Isolation, EveryPieceOfTheCurveLiesInItsBox) {
   std::mt19937_64 rng(5);
   int boxes = 0;
@@ -63,26 +86,24 @@ TEST(Isolation, EveryPieceOfTheCurveLiesInItsBox) {
 TEST(Isolation, TheCurveIsAsMonotoneAroundEachPieceAsItsBoundSays) {
   std::mt19937_64 rng(6);
   int bounded = 0, checked = 0;
-  for (int n = 2; n <= 24; ++n)
-    for (auto polygon : {datasets::ControlPolygon::unit_square, datasets::ControlPolygon::perturbed_arc}) {
-      const InversionPlan plan = make_plan(datasets::random_curve(CurveKind::rational_bezier, n, rng, polygon));
-      for (int j = 0; j < K; ++j) {
-        const double m = plan.isolation_monotone[j];
-        ASSERT_GE(m, 0.0);
-        if (m == 0) continue;
-        ++bounded;
-        const double lo = std::max(0, j - 1) / double(K), hi = std::min(K, j + 2) / double(K);
-        for (int k = 0; k < 40; ++k) {
-          const double t = datasets::uniform(rng, lo, hi), tau = datasets::uniform(rng, lo, hi);
-          const auto a = plan.normalized_point(t);
-          const detail::CurveJet b = detail::curve_jet(plan, tau);
-          const double along = ((b.x - a[0]) * b.dx + (b.y - a[1]) * b.dy) * (tau > t ? 1 : -1);
-          const double bound = 2 * m * std::abs(tau - t) * std::hypot(b.dx, b.dy);
-          EXPECT_GE(along, bound * (1 - 1e-9) - 1e-15) << "n " << n << " piece " << j << " t " << t << " tau " << tau;
-          ++checked;
-        }
+  for_each_random_plan(rng, 2, 24, [&](int n, const InversionPlan& plan) {
+    for (int j = 0; j < K; ++j) {
+      const double m = plan.isolation_monotone[j];
+      ASSERT_GE(m, 0.0);
+      if (m == 0) continue;
+      ++bounded;
+      const auto [lo, hi] = around_piece(j);
+      for (int k = 0; k < 40; ++k) {
+        const double t = datasets::uniform(rng, lo, hi), tau = datasets::uniform(rng, lo, hi);
+        const auto a = plan.normalized_point(t);
+        const detail::CurveJet b = detail::curve_jet(plan, tau);
+        const double along = ((b.x - a[0]) * b.dx + (b.y - a[1]) * b.dy) * (tau > t ? 1 : -1);
+        const double bound = 2 * m * std::abs(tau - t) * std::hypot(b.dx, b.dy);
+        EXPECT_GE(along, bound * (1 - 1e-9) - 1e-15) << "n " << n << " piece " << j << " t " << t << " tau " << tau;
+        ++checked;
       }
     }
+  });
   RecordProperty("pieces_with_a_bound", bounded);
   RecordProperty("pairs_checked", checked);
   EXPECT_GT(bounded, 100);
@@ -96,37 +117,33 @@ TEST(Isolation, TheCurveIsAsMonotoneAroundEachPieceAsItsBoundSays) {
 TEST(Isolation, BelowTheUniquenessBoundTheDistanceHasOneMinimumAroundEachPiece) {
   std::mt19937_64 rng(12);
   int bounded = 0, checked = 0;
-  for (int n = 2; n <= 20; ++n)
-    for (auto polygon : {datasets::ControlPolygon::unit_square, datasets::ControlPolygon::perturbed_arc}) {
-      const InversionPlan plan = make_plan(datasets::random_curve(CurveKind::rational_bezier, n, rng, polygon));
-      for (int j = 0; j < K; ++j) {
-        const double unique = plan.isolation_unique[j];
-        ASSERT_GE(unique, 0.0);
-        if (unique == 0) continue;
-        ++bounded;
-        const double lo = std::max(0, j - 1) / double(K), hi = std::min(K, j + 2) / double(K);
-        for (int k = 0; k < 6; ++k) {
-          const double t = datasets::uniform(rng, j / double(K), (j + 1) / double(K));
-          const detail::CurveJet jet = detail::curve_jet(plan, t);
-          const double speed = std::hypot(jet.dx, jet.dy);
-          const double kappa = (jet.dx * jet.ddy - jet.dy * jet.ddx) / (speed * speed * speed);
-          const double side = kappa >= 0 ? 1.0 : -1.0;
-          const double radius = kappa != 0 ? 1 / std::abs(kappa) : std::numeric_limits<double>::infinity();
-          const double off = std::min(0.99 * unique, 1.02 * radius) * (k % 3 == 0 ? 0.5 : 1.0);
-          const double u0 = jet.x - side * off * jet.dy / speed, v0 = jet.y + side * off * jet.dx / speed;
-          constexpr int kGrid = 800;
-          std::vector<double> f(kGrid + 1);
-          for (int g = 0; g <= kGrid; ++g) {
-            const auto p = plan.normalized_point(lo + (hi - lo) * g / kGrid);
-            f[g] = (p[0] - u0) * (p[0] - u0) + (p[1] - v0) * (p[1] - v0);
-          }
-          int minima = 0;
-          for (int g = 1; g < kGrid; ++g) minima += f[g] < f[g - 1] && f[g] <= f[g + 1];
-          EXPECT_LE(minima, 1) << "n " << n << " piece " << j << " t " << t << " off " << off << " radius " << radius;
-          ++checked;
+  for_each_random_plan(rng, 2, 20, [&](int n, const InversionPlan& plan) {
+    for (int j = 0; j < K; ++j) {
+      const double unique = plan.isolation_unique[j];
+      ASSERT_GE(unique, 0.0);
+      if (unique == 0) continue;
+      ++bounded;
+      const auto [lo, hi] = around_piece(j);
+      for (int k = 0; k < 6; ++k) {
+        const double t = datasets::uniform(rng, j / double(K), (j + 1) / double(K));
+        const detail::CurveJet jet = detail::curve_jet(plan, t);
+        const double kappa = curvature(jet);
+        const double radius = kappa != 0 ? 1 / std::abs(kappa) : std::numeric_limits<double>::infinity();
+        const double off = std::min(0.99 * unique, 1.02 * radius) * (k % 3 == 0 ? 0.5 : 1.0);
+        const auto [u0, v0] = along_normal(jet, kappa >= 0 ? off : -off);  // the inner side
+        constexpr int kGrid = 800;
+        std::vector<double> f(kGrid + 1);
+        for (int g = 0; g <= kGrid; ++g) {
+          const auto p = plan.normalized_point(lo + (hi - lo) * g / kGrid);
+          f[g] = (p[0] - u0) * (p[0] - u0) + (p[1] - v0) * (p[1] - v0);
         }
+        int minima = 0;
+        for (int g = 1; g < kGrid; ++g) minima += f[g] < f[g - 1] && f[g] <= f[g + 1];
+        EXPECT_LE(minima, 1) << "n " << n << " piece " << j << " t " << t << " off " << off << " radius " << radius;
+        ++checked;
       }
     }
+  });
   RecordProperty("pieces_with_a_bound", bounded);
   RecordProperty("points_checked", checked);
   EXPECT_GT(bounded, 300);
@@ -182,18 +199,16 @@ TEST(Isolation, NoWalkEndsWithinTheToleranceAwayFromACertifiedParameterOffTheCur
         const double tolerance = relative_tolerance * plan.diagonal / plan.scale;
         for (int k = 0; k < 12; ++k) {
           const double t = datasets::uniform(rng, 0.0, 1.0);
-          const auto p = plan.normalized_point(t);
           const detail::CurveJet jet = detail::curve_jet(plan, t);
-          const double speed = std::hypot(jet.dx, jet.dy);
-          // Every other point: on the inner side, just past the centre of curvature (radius
-          // 1 / kappa, kappa = (P' x P'') / |P'|^3) when that is within the tolerance.
+          // Every other point: on the inner side, just past the centre of curvature, when that
+          // is within the tolerance.
           double off = datasets::uniform(rng, -0.9, 0.9) * tolerance;
-          const double kappa = (jet.dx * jet.ddy - jet.dy * jet.ddx) / (speed * speed * speed);
+          const double kappa = curvature(jet);
           if (k % 2 == 1 && 1.05 / std::abs(kappa) < 0.9 * tolerance) {
             off = std::copysign(1.05 / std::abs(kappa), kappa);
             ++past_centre;
           }
-          const double u0 = p[0] - off * jet.dy / speed, v0 = p[1] + off * jet.dx / speed;
+          const auto [u0, v0] = along_normal(jet, off);
           const detail::Refined own = detail::refine_parameter(plan, u0, v0, t, true);
           if (!detail::isolated(plan, u0, v0, own.t, own.distance, tolerance)) {
             ++refused;
@@ -236,11 +251,9 @@ TEST(Isolation, CertifiedWithItsOwnDistanceAParameterIsTheNearestOfTheSegment) {
       for (int g = 0; g <= kGrid; ++g) grid[g] = plan.normalized_point(g / double(kGrid));
       for (int k = 0; k < 40; ++k) {
         const double t = datasets::uniform(rng, 0.0, 1.0);
-        const detail::CurveJet jet = detail::curve_jet(plan, t);
-        const double speed = std::hypot(jet.dx, jet.dy);
         const double off = std::copysign(std::pow(10.0, datasets::uniform(rng, -5.0, -1.0)), datasets::uniform(rng, -1.0, 1.0)) *
                            plan.diagonal / plan.scale;
-        const double u0 = jet.x - off * jet.dy / speed, v0 = jet.y + off * jet.dx / speed;
+        const auto [u0, v0] = along_normal(detail::curve_jet(plan, t), off);
         const detail::Refined own = detail::refine_parameter(plan, u0, v0, t, true);
         if (!(own.t > 0 && own.t < 1) || !detail::isolated(plan, u0, v0, own.t, own.distance, own.distance)) {
           ++refused;
