@@ -45,6 +45,24 @@ std::pair<double, double> around_piece(int j) {
   return {std::max(0, j - 1) / double(K), std::min(K, j + 2) / double(K)};
 }
 
+// For the random plans above, every piece j whose bound (plan.*field)[j] applies (> 0; none is
+// negative): f(n, plan, j, bound). Returns how many.
+template <class F>
+int for_each_bounded_piece(std::mt19937_64& rng, int first, int last, std::vector<double> InversionPlan::*field,
+                           F&& f) {
+  int bounded = 0;
+  for_each_random_plan(rng, first, last, [&](int n, const InversionPlan& plan) {
+    for (int j = 0; j < K; ++j) {
+      const double bound = (plan.*field)[j];
+      EXPECT_GE(bound, 0.0);
+      if (!(bound > 0)) continue;
+      ++bounded;
+      f(n, plan, j, bound);
+    }
+  });
+  return bounded;
+}
+
 // The signed curvature P' x P'' / |P'|^3 at a jet, and the point `off` along its left normal.
 double curvature(const detail::CurveJet& jet) {
   const double speed = std::hypot(jet.dx, jet.dy);
@@ -85,25 +103,20 @@ TEST(Isolation, EveryPieceOfTheCurveLiesInItsBox) {
 //   sign(tau - t) (P(tau) - P(t)) . P'(tau) >= 2 m |tau - t| |P'(tau)|   (isolation.hpp).
 TEST(Isolation, TheCurveIsAsMonotoneAroundEachPieceAsItsBoundSays) {
   std::mt19937_64 rng(6);
-  int bounded = 0, checked = 0;
-  for_each_random_plan(rng, 2, 24, [&](int n, const InversionPlan& plan) {
-    for (int j = 0; j < K; ++j) {
-      const double m = plan.isolation_monotone[j];
-      ASSERT_GE(m, 0.0);
-      if (m == 0) continue;
-      ++bounded;
-      const auto [lo, hi] = around_piece(j);
-      for (int k = 0; k < 40; ++k) {
-        const double t = datasets::uniform(rng, lo, hi), tau = datasets::uniform(rng, lo, hi);
-        const auto a = plan.normalized_point(t);
-        const detail::CurveJet b = detail::curve_jet(plan, tau);
-        const double along = ((b.x - a[0]) * b.dx + (b.y - a[1]) * b.dy) * (tau > t ? 1 : -1);
-        const double bound = 2 * m * std::abs(tau - t) * std::hypot(b.dx, b.dy);
-        EXPECT_GE(along, bound * (1 - 1e-9) - 1e-15) << "n " << n << " piece " << j << " t " << t << " tau " << tau;
-        ++checked;
-      }
-    }
-  });
+  int checked = 0;
+  const int bounded = for_each_bounded_piece(
+      rng, 2, 24, &InversionPlan::isolation_monotone, [&](int n, const InversionPlan& plan, int j, double m) {
+        const auto [lo, hi] = around_piece(j);
+        for (int k = 0; k < 40; ++k) {
+          const double t = datasets::uniform(rng, lo, hi), tau = datasets::uniform(rng, lo, hi);
+          const auto a = plan.normalized_point(t);
+          const detail::CurveJet b = detail::curve_jet(plan, tau);
+          const double along = ((b.x - a[0]) * b.dx + (b.y - a[1]) * b.dy) * (tau > t ? 1 : -1);
+          const double bound = 2 * m * std::abs(tau - t) * std::hypot(b.dx, b.dy);
+          EXPECT_GE(along, bound * (1 - 1e-9) - 1e-15) << "n " << n << " piece " << j << " t " << t << " tau " << tau;
+          ++checked;
+        }
+      });
   RecordProperty("pieces_with_a_bound", bounded);
   RecordProperty("pairs_checked", checked);
   EXPECT_GT(bounded, 100);
@@ -116,34 +129,29 @@ TEST(Isolation, TheCurveIsAsMonotoneAroundEachPieceAsItsBoundSays) {
 // distance has two minima.
 TEST(Isolation, BelowTheUniquenessBoundTheDistanceHasOneMinimumAroundEachPiece) {
   std::mt19937_64 rng(12);
-  int bounded = 0, checked = 0;
-  for_each_random_plan(rng, 2, 20, [&](int n, const InversionPlan& plan) {
-    for (int j = 0; j < K; ++j) {
-      const double unique = plan.isolation_unique[j];
-      ASSERT_GE(unique, 0.0);
-      if (unique == 0) continue;
-      ++bounded;
-      const auto [lo, hi] = around_piece(j);
-      for (int k = 0; k < 6; ++k) {
-        const double t = datasets::uniform(rng, j / double(K), (j + 1) / double(K));
-        const detail::CurveJet jet = detail::curve_jet(plan, t);
-        const double kappa = curvature(jet);
-        const double radius = kappa != 0 ? 1 / std::abs(kappa) : std::numeric_limits<double>::infinity();
-        const double off = std::min(0.99 * unique, 1.02 * radius) * (k % 3 == 0 ? 0.5 : 1.0);
-        const auto [u0, v0] = along_normal(jet, kappa >= 0 ? off : -off);  // the inner side
-        constexpr int kGrid = 800;
-        std::vector<double> f(kGrid + 1);
-        for (int g = 0; g <= kGrid; ++g) {
-          const auto p = plan.normalized_point(lo + (hi - lo) * g / kGrid);
-          f[g] = (p[0] - u0) * (p[0] - u0) + (p[1] - v0) * (p[1] - v0);
+  int checked = 0;
+  const int bounded = for_each_bounded_piece(
+      rng, 2, 20, &InversionPlan::isolation_unique, [&](int n, const InversionPlan& plan, int j, double unique) {
+        const auto [lo, hi] = around_piece(j);
+        for (int k = 0; k < 6; ++k) {
+          const double t = datasets::uniform(rng, j / double(K), (j + 1) / double(K));
+          const detail::CurveJet jet = detail::curve_jet(plan, t);
+          const double kappa = curvature(jet);
+          const double radius = kappa != 0 ? 1 / std::abs(kappa) : std::numeric_limits<double>::infinity();
+          const double off = std::min(0.99 * unique, 1.02 * radius) * (k % 3 == 0 ? 0.5 : 1.0);
+          const auto [u0, v0] = along_normal(jet, kappa >= 0 ? off : -off);  // the inner side
+          constexpr int kGrid = 800;
+          std::vector<double> f(kGrid + 1);
+          for (int g = 0; g <= kGrid; ++g) {
+            const auto p = plan.normalized_point(lo + (hi - lo) * g / kGrid);
+            f[g] = (p[0] - u0) * (p[0] - u0) + (p[1] - v0) * (p[1] - v0);
+          }
+          int minima = 0;
+          for (int g = 1; g < kGrid; ++g) minima += f[g] < f[g - 1] && f[g] <= f[g + 1];
+          EXPECT_LE(minima, 1) << "n " << n << " piece " << j << " t " << t << " off " << off << " radius " << radius;
+          ++checked;
         }
-        int minima = 0;
-        for (int g = 1; g < kGrid; ++g) minima += f[g] < f[g - 1] && f[g] <= f[g + 1];
-        EXPECT_LE(minima, 1) << "n " << n << " piece " << j << " t " << t << " off " << off << " radius " << radius;
-        ++checked;
-      }
-    }
-  });
+      });
   RecordProperty("pieces_with_a_bound", bounded);
   RecordProperty("points_checked", checked);
   EXPECT_GT(bounded, 300);
