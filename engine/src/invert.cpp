@@ -487,8 +487,9 @@ void answer_fast(const InversionPlan& plan, double t, double distance, double si
 //     where it would look for a second parameter (the sigma_{n-1} estimate below
 //     kFastPathGapRatio, as for the on-curve lanes) none of the roots can end within the
 //     tolerance (extension_roots_clear), so it would go on to the nearest-point search;
-//   - that search can only find t: the isolation certificate with the lane's own distance for the
-//     tolerance says that no point of the segment outside t's neighbourhood is as near as P(t),
+//   - that search can only find t (detail::nearest_on_segment): the isolation certificate with the
+//     lane's own distance for the tolerance says that no point of the segment outside t's
+//     neighbourhood is as near as P(t),
 //     and that inside it the distance has t for its only stationary point, falling towards it on
 //     both sides (engine/src/isolation.hpp), so no end of the segment there is nearer either.
 // Both paths then give the same t up to the last bits of the refinement, and the same status.
@@ -537,7 +538,7 @@ bool off_curve_certified(const InversionPlan& plan, const BatchWorkspace& w, std
                          double tolerance) {
   const int n = plan.degree;
   if (c.on_curve || !(c.t > 0.0 && c.t < 1.0) || !std::isfinite(c.distance)) return false;
-  if (!detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, std::max(c.distance, tolerance))) return false;
+  if (!detail::nearest_on_segment(plan, w.u[l], w.v[l], c.t, c.distance)) return false;
   const detail::CurveJet jet = detail::curve_jet(plan, c.t);
   const double along = (jet.x - w.u[l]) * jet.dx + (jet.y - w.v[l]) * jet.dy;
   if (!(std::abs(along) <= kStationaryCosine * c.distance * std::hypot(jet.dx, jet.dy))) return false;

@@ -216,4 +216,11 @@ bool isolated(const InversionPlan& plan, double u0, double v0, double t, double 
   return true;
 }
 
+bool nearest_on_segment(const InversionPlan& plan, double u0, double v0, double t, double distance) {
+  constexpr int K = kIsolationPieces;
+  if (plan.isolation_unique.empty() || !(t >= 0.0 && t <= 1.0)) return false;
+  const int j = std::min(K - 1, static_cast<int>(t * K));
+  return distance < plan.isolation_unique[j] && isolated(plan, u0, v0, t, distance, distance);
+}
+
 }  // namespace bezinv::detail

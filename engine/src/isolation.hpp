@@ -52,4 +52,10 @@ void isolation_pieces(InversionPlan& plan);
 // all in normalized units. False whenever the certificate does not apply.
 bool isolated(const InversionPlan& plan, double u0, double v0, double t, double distance, double tolerance);
 
+// True when P(t), at `distance` from (u0, v0), is the nearest point of the whole segment: the
+// certificate with the point's own distance for the tolerance, and the distance below
+// isolation_unique (t the only stationary point around it, not only the ones within
+// kDistinctParameterGap). t must be a stationary point of the distance (the caller checks it).
+bool nearest_on_segment(const InversionPlan& plan, double u0, double v0, double t, double distance);
+
 }  // namespace bezinv::detail

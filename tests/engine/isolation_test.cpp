@@ -244,10 +244,10 @@ TEST(Isolation, NoWalkEndsWithinTheToleranceAwayFromACertifiedParameterOffTheCur
 }
 
 // What the fast path's off_curve answers rest on (engine/src/invert.cpp, off_curve_certified):
-// certified with its own distance for the tolerance, a stationary point of the distance is the
-// nearest point of the whole segment. Checked against the distance on a grid of the segment, for
+// where nearest_on_segment says so, a stationary point of the distance is the nearest point of the
+// whole segment. Checked against the distance on a grid of the segment, for
 // points up to a tenth of the curve's size off these loops, where another branch is often nearer.
-TEST(Isolation, CertifiedWithItsOwnDistanceAParameterIsTheNearestOfTheSegment) {
+TEST(Isolation, NearestOnSegmentIsTheNearestPointOfTheSegment) {
   std::mt19937_64 rng(13);
   int certified = 0, refused = 0;
   for (int n : {2, 3, 4, 5, 6, 8, 10, 12, 15, 20})
@@ -263,7 +263,7 @@ TEST(Isolation, CertifiedWithItsOwnDistanceAParameterIsTheNearestOfTheSegment) {
                            plan.diagonal / plan.scale;
         const auto [u0, v0] = along_normal(detail::curve_jet(plan, t), off);
         const detail::Refined own = detail::refine_parameter(plan, u0, v0, t, true);
-        if (!(own.t > 0 && own.t < 1) || !detail::isolated(plan, u0, v0, own.t, own.distance, own.distance)) {
+        if (!(own.t > 0 && own.t < 1) || !detail::nearest_on_segment(plan, u0, v0, own.t, own.distance)) {
           ++refused;
           continue;
         }
