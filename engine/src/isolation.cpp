@@ -43,9 +43,37 @@ void multiply_add(const double* f, int p, const double* g, int q, double sign, d
 }
 
 struct Piece {
-  bool positive = false;        // every weight of the piece > 0
-  Coefficients x{}, y{}, w{};   // the piece's homogeneous control points
+  bool positive = false;             // every weight of the piece > 0
+  Coefficients x{}, wx{}, y{}, wy{};  // numerators and denominators (wy = wx for a common one)
 };
+
+// One coordinate f = F / W of a piece (Bernstein coefficients of F and W, degree n, W > 0):
+// the coefficients of H = F'W - FW' (degree 2n - 1) and the bounds that |f''| needs.
+struct Coordinate {
+  std::array<double, 2 * kMaxDegree> h{};
+  double w_min = 0, w_max = 0;
+  double bend = 0;  // |f''| <= (|G| W + 2 |W'| |H|) / W^3, G = H' = F''W - FW'' (degree 2n - 2)
+};
+Coordinate coordinate(const Coefficients& f, const Coefficients& w, int n) {
+  Coordinate c;
+  std::array<double, kMaxDegree> df{}, dw{}, ddf{}, ddw{};
+  for (int i = 0; i < n; ++i) df[i] = n * (f[i + 1] - f[i]), dw[i] = n * (w[i + 1] - w[i]);
+  for (int i = 0; i + 1 < n; ++i) ddf[i] = (n - 1) * (df[i + 1] - df[i]), ddw[i] = (n - 1) * (dw[i + 1] - dw[i]);
+  multiply_add(df.data(), n - 1, w.data(), n, 1.0, c.h.data());
+  multiply_add(f.data(), n, dw.data(), n - 1, -1.0, c.h.data());
+  std::array<double, 2 * kMaxDegree> g{};
+  multiply_add(ddf.data(), n - 2, w.data(), n, 1.0, g.data());
+  multiply_add(f.data(), n, ddw.data(), n - 2, -1.0, g.data());
+  // Each polynomial is bounded by its largest Bernstein coefficient, W from below by its smallest.
+  double h_max = 0, g_max = 0, dw_max = 0;
+  for (int k = 0; k <= 2 * n - 1; ++k) h_max = std::max(h_max, std::abs(c.h[k]));
+  for (int k = 0; k <= 2 * n - 2; ++k) g_max = std::max(g_max, std::abs(g[k]));
+  for (int i = 0; i < n; ++i) dw_max = std::max(dw_max, std::abs(dw[i]));
+  c.w_min = *std::min_element(w.begin(), w.begin() + n + 1);
+  c.w_max = *std::max_element(w.begin(), w.begin() + n + 1);
+  c.bend = (g_max * c.w_max + 2 * dw_max * h_max) / (c.w_min * c.w_min * c.w_min);
+  return c;
+}
 
 }  // namespace
 
@@ -55,7 +83,7 @@ void isolation_pieces(InversionPlan& plan) {
   plan.isolation_monotone.clear();
   plan.isolation_unique.clear();
   const int n = plan.degree;
-  if (n < 2 || !plan.common_denominator) return;
+  if (n < 2) return;
   constexpr int K = kIsolationPieces;
   std::vector<Piece> pieces(K);
   // x centres, x half-widths, y centres, y half-widths, K each (the distance from a point to a box
@@ -74,12 +102,15 @@ void isolation_pieces(InversionPlan& plan) {
     const double a = static_cast<double>(j) / K, b = static_cast<double>(j + 1) / K;  // exact
     piece.x = split(plan.x_num, a, b);
     piece.y = split(plan.y_num, a, b);
-    piece.w = split(plan.x_den, a, b);
+    piece.wx = split(plan.x_den, a, b);
+    piece.wy = plan.common_denominator ? piece.wx : split(plan.y_den, a, b);
     piece.positive = true;
     double x_min = inf, x_max = -inf, y_min = inf, y_max = -inf;
     for (int i = 0; i <= n; ++i) {
-      if (!(piece.w[i] > 0)) piece.positive = false;
-      const double x = piece.x[i] / piece.w[i], y = piece.y[i] / piece.w[i];
+      // x = X / Wx is a convex combination of the x[i] / wx[i] (weights wx[i] B_i / Wx), and so is
+      // y of its own ratios: the box holds the piece for separate denominators too.
+      if (!(piece.wx[i] > 0 && piece.wy[i] > 0)) piece.positive = false;
+      const double x = piece.x[i] / piece.wx[i], y = piece.y[i] / piece.wy[i];
       x_min = std::min(x_min, x); x_max = std::max(x_max, x);
       y_min = std::min(y_min, y); y_max = std::max(y_max, y);
     }
@@ -120,7 +151,7 @@ void isolation_pieces(InversionPlan& plan) {
     // c: the chord of N.
     const Piece& p0 = pieces[first];
     const Piece& p1 = pieces[last];
-    double cx = p1.x[n] / p1.w[n] - p0.x[0] / p0.w[0], cy = p1.y[n] / p1.w[n] - p0.y[0] / p0.w[0];
+    double cx = p1.x[n] / p1.wx[n] - p0.x[0] / p0.wx[0], cy = p1.y[n] / p1.wy[n] - p0.y[0] / p0.wy[0];
     const double chord = std::hypot(cx, cy);
     if (!(chord > 0)) continue;
     cx /= chord;
@@ -129,52 +160,23 @@ void isolation_pieces(InversionPlan& plan) {
     double cos_alpha = 1.0, speed = std::numeric_limits<double>::infinity(), bend = 0.0;
     for (int q = first; q <= last; ++q) {
       const Piece& p = pieces[q];
-      // The angle of every difference of control points with c.
-      for (int i = 0; i <= n; ++i)
-        for (int k = i + 1; k <= n; ++k) {
-          const double dx = p.x[k] / p.w[k] - p.x[i] / p.w[i], dy = p.y[k] / p.w[k] - p.y[i] / p.w[i];
-          const double length = std::hypot(dx, dy);
-          if (length == 0) continue;  // adds nothing to the combination
-          cos_alpha = std::min(cos_alpha, (dx * cx + dy * cy) / length);
+      const Coordinate fx = coordinate(p.x, p.wx, n), fy = coordinate(p.y, p.wy, n);
+      // P' = (Hx / Wx^2, Hy / Wy^2) = (Hx, r Hy) / Wx^2 with r = Wx^2 / Wy^2 in [r_lo, r_hi] (r = 1
+      // for a common denominator), and (Hx, r Hy) = sum_k B_k (hx_k, r hy_k): every tangent lies in
+      // the cone of the generators (hx_k, r hy_k), r = r_lo or r_hi, and P' . c is at least their
+      // smallest component along c over the largest Wx^2 (when that is positive).
+      const double r_lo = plan.common_denominator ? 1.0 : (fx.w_min * fx.w_min) / (fy.w_max * fy.w_max);
+      const double r_hi = plan.common_denominator ? 1.0 : (fx.w_max * fx.w_max) / (fy.w_min * fy.w_min);
+      double along_min = std::numeric_limits<double>::infinity();
+      for (int k = 0; k <= 2 * n - 1; ++k)
+        for (double r : {r_lo, r_hi}) {
+          const double gx = fx.h[k], gy = r * fy.h[k];
+          const double along = gx * cx + gy * cy, length = std::hypot(gx, gy);
+          along_min = std::min(along_min, along);
+          if (length > 0) cos_alpha = std::min(cos_alpha, along / length);  // 0 adds nothing to the cone
         }
-      // v: P' . c = (H . c) / W^2 with H = X'W - XW' (degree 2n - 1 here), at least the smallest
-      // Bernstein coefficient of H . c over the largest of W^2 (W lies between its coefficients).
-      std::array<double, kMaxDegree> dx{}, dy{}, dw{};
-      for (int i = 0; i < n; ++i) {
-        dx[i] = n * (p.x[i + 1] - p.x[i]);
-        dy[i] = n * (p.y[i + 1] - p.y[i]);
-        dw[i] = n * (p.w[i + 1] - p.w[i]);
-      }
-      std::array<double, 2 * kMaxDegree> hx{}, hy{};
-      multiply_add(dx.data(), n - 1, p.w.data(), n, 1.0, hx.data());
-      multiply_add(p.x.data(), n, dw.data(), n - 1, -1.0, hx.data());
-      multiply_add(dy.data(), n - 1, p.w.data(), n, 1.0, hy.data());
-      multiply_add(p.y.data(), n, dw.data(), n - 1, -1.0, hy.data());
-      double h_min = std::numeric_limits<double>::infinity(), h_max = 0.0, w_max = 0.0,
-             w_min = std::numeric_limits<double>::infinity(), dw_max = 0.0;
-      for (int k = 0; k <= 2 * n - 1; ++k) {
-        h_min = std::min(h_min, hx[k] * cx + hy[k] * cy);
-        h_max = std::max(h_max, std::hypot(hx[k], hy[k]));
-      }
-      for (int i = 0; i <= n; ++i) w_max = std::max(w_max, p.w[i]), w_min = std::min(w_min, p.w[i]);
-      for (int i = 0; i < n; ++i) dw_max = std::max(dw_max, std::abs(dw[i]));
-      speed = std::min(speed, h_min / (w_max * w_max));
-      // |P''| <= (|G| W + 2 |W'| |H|) / W^3 with G = H' = X''W - XW'' (degree 2n - 2): each
-      // polynomial bounded by its largest Bernstein coefficient, W from below by its smallest.
-      std::array<double, kMaxDegree> ddx{}, ddy{}, ddw{};
-      for (int i = 0; i + 1 < n; ++i) {
-        ddx[i] = (n - 1) * (dx[i + 1] - dx[i]);
-        ddy[i] = (n - 1) * (dy[i + 1] - dy[i]);
-        ddw[i] = (n - 1) * (dw[i + 1] - dw[i]);
-      }
-      std::array<double, 2 * kMaxDegree> gx{}, gy{};
-      multiply_add(ddx.data(), n - 2, p.w.data(), n, 1.0, gx.data());
-      multiply_add(p.x.data(), n, ddw.data(), n - 2, -1.0, gx.data());
-      multiply_add(ddy.data(), n - 2, p.w.data(), n, 1.0, gy.data());
-      multiply_add(p.y.data(), n, ddw.data(), n - 2, -1.0, gy.data());
-      double g_max = 0.0;
-      for (int k = 0; k <= 2 * n - 2; ++k) g_max = std::max(g_max, std::hypot(gx[k], gy[k]));
-      bend = std::max(bend, (g_max * w_max + 2 * dw_max * h_max) / (w_min * w_min * w_min));
+      speed = std::min(speed, along_min / (fx.w_max * fx.w_max));
+      bend = std::max(bend, std::hypot(fx.bend, fy.bend));
     }
     const double cos_2alpha = 2 * cos_alpha * cos_alpha - 1;
     // Half of each: room for the rounding of all the above (relative errors ~n^2 eps). In t:

@@ -9,20 +9,24 @@
 // computed once per curve, in one comparison for most lanes (one per piece for the rest):
 //
 //  1. Far from t. The curve is cut into kIsolationPieces pieces [j/K, (j+1)/K]. With positive
-//     weights each piece lies in the convex hull of its own control points, so in their box. If the
-//     box of every piece not next to t's is farther than the tolerance from P0, no parameter there
-//     can end within the tolerance.
-//  2. Around t (its piece and the two next to it, N). For a rational Bezier curve with positive
-//     weights, P' = (X'W - XW') / W^2 and
-//         X'W - XW' = sum_{i<j} w_i w_j (j - i) B_i B_j / (t (1 - t)) (P_j - P_i),
-//     a positive combination of the differences of the control points (of each piece, as a curve
-//     of its own). If all those differences lie within an angle alpha < 45 degrees of a direction
-//     c, any two tangents on N make an angle below 2 alpha, so for tau in N
+//     weights each coordinate of a piece is a convex combination of its control values (x = X/Wx
+//     of the x[i] / wx[i], y of its own ratios, with separate denominators too), so the piece lies
+//     in their box. If the box of every piece not next to t's is farther than the tolerance from
+//     P0, no parameter there can end within the tolerance.
+//  2. Around t (its piece and the two next to it, N). With positive weights,
+//         P' = (Hx / Wx^2, Hy / Wy^2) = (Hx, r Hy) / Wx^2,   Hx = X'Wx - XWx',  r = Wx^2 / Wy^2,
+//     and (Hx, r Hy) = sum_k B_k (hx_k, r hy_k) over the Bernstein coefficients of Hx and Hy
+//     (degree 2n - 1, of each piece as a curve of its own). With r between its bounds r_lo and
+//     r_hi from the weights (r = 1 for a common denominator), every tangent on N is a positive
+//     combination of the generators (hx_k, r_lo hy_k), (hx_k, r_hi hy_k). If all of them lie
+//     within an angle alpha < 45 degrees of a direction c, any two tangents on N make an angle
+//     below 2 alpha, so for tau in N
 //         (P(tau) - P(t)) . P'(tau) >= cos(2 alpha) |P(tau) - P(t)| |P'(tau)|   (sign of tau - t)
-//     and |P(tau) - P(t)| >= v |tau - t| with v a lower bound of P' . c on N. A stationary point
-//     of the distance to P0 (|P(t) - P0| = d) then has cos(2 alpha) |P(tau) - P(t)| <= d, so
-//     |tau - t| <= d / (cos(2 alpha) v): below kDistinctParameterGap when d is small enough. Away
-//     from t the distance strictly decreases towards t, so a Newton walk that reaches N ends at t.
+//     and |P(tau) - P(t)| >= v |tau - t| with v = min (generator . c) / max Wx^2 a lower bound
+//     of P' . c on N. A stationary point of the distance to P0 (|P(t) - P0| = d) then has
+//     cos(2 alpha) |P(tau) - P(t)| <= d, so |tau - t| <= d / (cos(2 alpha) v): below
+//     kDistinctParameterGap when d is small enough. Away from t the distance strictly decreases
+//     towards t, so a Newton walk that reaches N ends at t.
 //  3. Off the curve (d larger than that sliver): one stationary point on N. Two local minima of
 //     f(tau) = |P(tau) - P0|^2 on N would have a stationary point between them with f'' <= 0.
 //     Every stationary point tau has |P(tau) - P(t)| <= d / cos(2 alpha) (above), so there
@@ -30,13 +34,14 @@
 //     M a bound of |P''| on N: positive when d < v^2 / ((1 + 1 / cos(2 alpha)) M). Then every
 //     stationary point on N is a strict minimum, so there is only one, and t is it (t is where a
 //     refinement ended: a stationary point, or an end of the segment, where the walks stop too).
-//     M comes from P'' = (G W - 2 W' H) / W^3, H = X'W - XW' and G = H' = X''W - XW'', each
-//     bounded by its largest Bernstein coefficient and W from below by its smallest.
+//     M comes from x'' = (Gx Wx - 2 Wx' Hx) / Wx^3, Gx = Hx' = X''Wx - XWx'' (and y's alike),
+//     each polynomial bounded by its largest Bernstein coefficient and W from below by its
+//     smallest.
 // Together: no walk from any root can end within the tolerance at a parameter distinct from t.
-// Not certified (the roots are refined as before): separate denominators (the tangent formula
-// needs one W), a weight that is not positive, a piece of N that turns by 45 degrees or more, a
-// point off the curve by more than 3. allows (about a quarter of the radius of curvature, or
-// less), or a box near P0 (a second branch passing close, which is what the check is for).
+// Not certified (the roots are refined as before): a weight that is not positive, a piece of N
+// that turns by 45 degrees or more, a point off the curve by more than 3. allows (about a quarter
+// of the radius of curvature, or less), or a box near P0 (a second branch passing close, which is
+// what the check is for).
 #include "bezinv/plan.hpp"
 
 namespace bezinv::detail {

@@ -53,7 +53,7 @@ struct InversionPlan {
   // whole plane where a weight is not positive), the distance from each box to the nearest box not
   // next to it, and per piece a bound that makes the curve monotone around it and the distance
   // from the curve below which a point has one nearest parameter there (0: none). Empty for
-  // separate denominators and degree < 2.
+  // degree < 2.
   std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique;
 
   // Power-basis leading coefficients of the four polynomials and their size bounds, for
