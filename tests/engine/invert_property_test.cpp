@@ -575,7 +575,7 @@ TEST(InvertProperty, OffTheCurveTheFastPathAnswersOnlyWhereItsBranchIsTheNearest
       std::mt19937_64 rng(seed);
       const Curve curve = datasets::random_curve(kind, degree, rng, ControlPolygon::unit_square);
       const InversionPlan plan = make_plan(curve);
-      for (int k = 0; k < 120; ++k) {
+      for (int k = 0; k < 80; ++k) {
         // Along the normal at a random t, 1e-4 to 1e-1 of the curve's size (log-uniform), either side.
         const double t = datasets::uniform(rng, 0.0, 1.0);
         const Point on = datasets::on_curve(curve, t), ahead = datasets::on_curve(curve, t + 1e-6);

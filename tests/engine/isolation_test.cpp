@@ -135,14 +135,14 @@ TEST(Isolation, BelowTheUniquenessBoundTheDistanceHasOneMinimumAroundEachPiece) 
   const int bounded = for_each_bounded_piece(
       rng, 2, 20, &InversionPlan::isolation_unique, [&](int n, const InversionPlan& plan, int j, double unique) {
         const auto [lo, hi] = around_piece(j);
-        for (int k = 0; k < 6; ++k) {
+        for (int k = 0; k < 4; ++k) {
           const double t = datasets::uniform(rng, j / double(K), (j + 1) / double(K));
           const detail::CurveJet jet = detail::curve_jet(plan, t);
           const double kappa = curvature(jet);
           const double radius = kappa != 0 ? 1 / std::abs(kappa) : std::numeric_limits<double>::infinity();
           const double off = std::min(0.99 * unique, 1.02 * radius) * (k % 3 == 0 ? 0.5 : 1.0);
           const auto [u0, v0] = along_normal(jet, kappa >= 0 ? off : -off);  // the inner side
-          constexpr int kGrid = 600;
+          constexpr int kGrid = 400;
           std::vector<double> f(kGrid + 1);
           for (int g = 0; g <= kGrid; ++g) {
             const auto p = plan.normalized_point(lo + (hi - lo) * g / kGrid);
