@@ -2,12 +2,14 @@
 // the fast path), refined by the SVD alone (`fast_path = false`), algebraic (refine = false: the
 // paper's t, always by the SVD), one thread and all cores. 64 curves x 1024 points per degree,
 // cycled so that no curve's plan or points stay cache-hot between iterations (one iteration = one
-// curve's 1024 points). The baselines (the paper's way, Eigen per point, OpenCASCADE, SISL) run in
+// curve's 1024 points). Also noisy points (BM_Engine_refined_noisy). The baselines (the paper's way, Eigen per point, OpenCASCADE, SISL) run in
 // bench/baselines_bench.cpp, beside bezinv in the same process.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <map>
+#include <numbers>
+#include <utility>
 #include <random>
 #include <vector>
 
@@ -30,10 +32,12 @@ struct Workload {
   std::vector<std::vector<Point>> points;  // kPointsPerCurve per curve, t uniform in [0,1]
 };
 
-// Random rational Bezier curves (the paper's Sect. 3 setting) on perturbed arcs, built once per degree.
-const Workload& workload(int degree) {
-  static std::map<int, Workload> cache;
-  auto [it, inserted] = cache.try_emplace(degree);
+// Random rational Bezier curves (the paper's Sect. 3 setting) on perturbed arcs, built once per
+// degree and noise: the points are P(t) moved by noise * uniform(0, 1) * the curve's diagonal in a
+// random direction, as `bezinv profile --noise` does (noise 0: on the curve).
+const Workload& workload(int degree, double noise = 0.0) {
+  static std::map<std::pair<int, double>, Workload> cache;
+  auto [it, inserted] = cache.try_emplace({degree, noise});
   Workload& w = it->second;
   if (inserted) {
     std::mt19937_64 rng(4242 + degree);
@@ -42,7 +46,13 @@ const Workload& workload(int degree) {
                                                 datasets::ControlPolygon::perturbed_arc));
       w.plans.push_back(make_plan(w.curves.back()));
       std::vector<Point> pts(kPointsPerCurve);
-      for (Point& p : pts) p = datasets::on_curve(w.curves.back(), datasets::uniform(rng, 0.0, 1.0));
+      for (Point& p : pts) {
+        p = datasets::on_curve(w.curves.back(), datasets::uniform(rng, 0.0, 1.0));
+        if (noise == 0.0) continue;
+        const double angle = datasets::uniform(rng, 0.0, 2 * std::numbers::pi);
+        const double offset = noise * datasets::uniform(rng, 0.0, 1.0) * w.plans.back().diagonal;
+        p = {p.x + offset * std::cos(angle), p.y + offset * std::sin(angle)};
+      }
       w.points.push_back(std::move(pts));
     }
   }
@@ -51,8 +61,8 @@ const Workload& workload(int degree) {
 
 // ---- the engine ------------------------------------------------------------------------------------
 
-void run_engine(benchmark::State& state, bool refine, int threads, bool fast_path = true) {
-  const Workload& w = workload(static_cast<int>(state.range(0)));
+void run_engine(benchmark::State& state, bool refine, int threads, bool fast_path = true, double noise = 0.0) {
+  const Workload& w = workload(static_cast<int>(state.range(0)), noise);
   std::vector<PointResult> results(kPointsPerCurve);
   const InvertOptions options{.refine = refine, .threads = threads, .fast_path = fast_path};
   int c = 0;
@@ -69,12 +79,22 @@ void BM_Engine_refined(benchmark::State& state) { run_engine(state, true, 1); }
 void BM_Engine_algebraic(benchmark::State& state) { run_engine(state, false, 1); }
 void BM_Engine_refined_svd_only(benchmark::State& state) { run_engine(state, true, 1, false); }
 void BM_Engine_refined_all_cores(benchmark::State& state) { run_engine(state, true, 0); }
+// Noisy points, 1 thread, the default tolerance (1e-6 of the diagonal): within it (1e-7), and
+// beyond it (1e-5, 1e-4: rows off_curve, answered on the fast path where the isolation certificate
+// proves the nearest point, by the SVD path's search elsewhere). range(1) = -log10(noise).
+void BM_Engine_refined_noisy(benchmark::State& state) {
+  run_engine(state, true, 1, true, std::pow(10.0, -static_cast<double>(state.range(1))));
+}
 
 #define BEZINV_DEGREES ->Arg(3)->Arg(5)->Arg(8)->Arg(15)->Arg(20)->Unit(benchmark::kMicrosecond)
 BENCHMARK(BM_Engine_refined) BEZINV_DEGREES;
 BENCHMARK(BM_Engine_algebraic) BEZINV_DEGREES;
 BENCHMARK(BM_Engine_refined_svd_only) BEZINV_DEGREES;
 BENCHMARK(BM_Engine_refined_all_cores) BEZINV_DEGREES->UseRealTime();
+BENCHMARK(BM_Engine_refined_noisy)
+    ->ArgsProduct({{3, 8, 15, 20}, {7, 5, 4}})
+    ->ArgNames({"n", "noise_exp"})
+    ->Unit(benchmark::kMicrosecond);
 #undef BEZINV_DEGREES
 
 }  // namespace
