@@ -432,15 +432,21 @@ void decide(const InversionPlan& plan, double u0, double v0, const Candidate& ma
 // settle()'s walk along the extension from a root far outside took most of the time of this check
 // (with it the check cost 57% of the pipeline at degree 8, measured); the SVD path still does
 // both, and tests/engine/invert_property_test.cpp checks that the two paths give the same statuses.
-bool queue_second_parameters(int n, const BatchWorkspace& w, std::size_t l, const Candidate& c, PointResult* target) {
+// The parameters whose Bernstein vector lies in span{z, second} of batch lane l (at most two; how
+// many, as parameters_from_null_space).
+int null_space_roots(int n, const BatchWorkspace& w, std::size_t l, double roots[2]) {
   std::array<double, kMaxDegree> z, second;
   for (int r = 0; r < n; ++r) {
     z[r] = w.z[r * kBatchLanes + l];
     second[r] = w.second[r * kBatchLanes + l];
   }
+  return parameters_from_null_space(std::span<const double>(z.data(), n), std::span<const double>(second.data(), n),
+                                    roots);
+}
+
+bool queue_second_parameters(int n, const BatchWorkspace& w, std::size_t l, const Candidate& c, PointResult* target) {
   double roots[2];
-  const int count = parameters_from_null_space(std::span<const double>(z.data(), n),
-                                               std::span<const double>(second.data(), n), roots);
+  const int count = null_space_roots(n, w, l, roots);
   PairCheckQueue& q = pair_check_queue();
   const std::size_t lane = q.lanes;
   bool queued = false;
@@ -489,9 +495,9 @@ void answer_fast(const InversionPlan& plan, double t, double distance, double si
 //     tolerance (extension_roots_clear), so it would go on to the nearest-point search;
 //   - that search can only find t (detail::nearest_on_segment): the isolation certificate with the
 //     lane's own distance for the tolerance says that no point of the segment outside t's
-//     neighbourhood is as near as P(t),
-//     and that inside it the distance has t for its only stationary point, falling towards it on
-//     both sides (engine/src/isolation.hpp), so no end of the segment there is nearer either.
+//     neighbourhood is as near as P(t), and that inside it the distance has t for its only
+//     stationary point, falling towards it on both sides (engine/src/isolation.hpp), so no end
+//     of the segment there is nearer either.
 // Both paths then give the same t up to the last bits of the refinement, and the same status.
 // Stationary: cos(P(t) - P0, P'(t)) <= kStationaryCosine. The stationary point tau* the search
 // would find is then within 2 cos d |P'| / v^2 of t (f' = 2 cos d |P'| at t, and f'' >= v^2 on
@@ -511,21 +517,13 @@ constexpr double kRootNearEnd = 1e-6;
 // infinity: the SVD's may be real), or a root is near an end. Refusing every lane with a root
 // outside the segment instead (most have one) lost most of the gain: bezinv profile at noise
 // 1e-5, degrees 8 / 15 / 20, 881k / 267k / 128k points/s with the walks, 428k / 156k / 53k
-// without. No test point has yet needed them: with the walks
-// skipped, 475,200 rows of InvertProperty.OffTheCurveTheFastPathAnswersOnlyWhereItsBranchIsTheNearest
-// (20 times its curves, tolerances 1e-6 to 0.2) still agreed with the SVD path. They stay because
-// the certificate says nothing about the extension, and the SVD path walks it.
+// without. No test point has yet needed them: with the walks skipped, 475,200 rows of
+// InvertProperty.OffTheCurveTheFastPathAnswersOnlyWhereItsBranchIsTheNearest (20 times its
+// curves, tolerances 1e-6 to 0.2) still agreed with the SVD path. They stay because the
+// certificate says nothing about the extension, and the SVD path walks it.
 bool extension_roots_clear(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, double tolerance) {
-  const int n = plan.degree;
-  std::array<double, kMaxDegree> z, second;
-  for (int r = 0; r < n; ++r) {
-    z[r] = w.z[r * kBatchLanes + l];
-    second[r] = w.second[r * kBatchLanes + l];
-  }
   double roots[2];
-  if (parameters_from_null_space(std::span<const double>(z.data(), n), std::span<const double>(second.data(), n),
-                                 roots) != 2)
-    return false;
+  if (null_space_roots(plan.degree, w, l, roots) != 2) return false;
   for (double root : roots) {
     if (std::abs(root) <= kRootNearEnd || std::abs(root - 1.0) <= kRootNearEnd) return false;
     if (root > 0.0 && root < 1.0) continue;

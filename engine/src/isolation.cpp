@@ -189,10 +189,15 @@ void isolation_pieces(InversionPlan& plan) {
   }
 }
 
+namespace {
+// The piece [j/K, (j+1)/K] that holds t in [0, 1] (t = 1 in the last).
+int piece_of(double t) { return std::min(kIsolationPieces - 1, static_cast<int>(t * kIsolationPieces)); }
+}  // namespace
+
 bool isolated(const InversionPlan& plan, double u0, double v0, double t, double distance, double tolerance) {
   constexpr int K = kIsolationPieces;
   if (plan.isolation_monotone.empty() || !(t >= 0.0 && t <= 1.0)) return false;
-  const int j = std::min(K - 1, static_cast<int>(t * K));
+  const int j = piece_of(t);
   // Around t: every stationary point of the distance on N lies within distance / monotone of t,
   // and below isolation_unique there is only one, t itself.
   if (!(distance < plan.isolation_monotone[j] * kDistinctParameterGap) && !(distance < plan.isolation_unique[j]))
@@ -219,10 +224,8 @@ bool isolated(const InversionPlan& plan, double u0, double v0, double t, double 
 }
 
 bool nearest_on_segment(const InversionPlan& plan, double u0, double v0, double t, double distance) {
-  constexpr int K = kIsolationPieces;
   if (plan.isolation_unique.empty() || !(t >= 0.0 && t <= 1.0)) return false;
-  const int j = std::min(K - 1, static_cast<int>(t * K));
-  return distance < plan.isolation_unique[j] && isolated(plan, u0, v0, t, distance, distance);
+  return distance < plan.isolation_unique[piece_of(t)] && isolated(plan, u0, v0, t, distance, distance);
 }
 
 }  // namespace bezinv::detail
