@@ -209,6 +209,14 @@ struct BatchWorkspace {
   std::vector<double> second = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
   std::array<double, kBatchLanes> defect;
   std::array<double, 2 * kBatchLanes> estimate;
+  // The gap pass (see invert_batch_lanes): its lanes compacted, gap lane k being batch lane
+  // gap_lane_of[k], and the full kernel's outputs for them before they go back to their lanes.
+  std::vector<double> gap_B = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
+  std::vector<double> gap_z = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
+  std::vector<double> gap_second = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
+  std::array<double, kBatchLanes> gap_defect;
+  std::array<double, 2 * kBatchLanes> gap_estimate;
+  std::array<std::uint8_t, kBatchLanes> gap_lane_of;
   // The lanes left for the SVD path, compacted to the front: compact lane k is batch lane lane_of[k].
   std::array<std::uint8_t, kBatchLanes> lane_of;
 };
@@ -532,15 +540,43 @@ bool extension_roots_clear(const InversionPlan& plan, const BatchWorkspace& w, s
   return true;
 }
 
-bool off_curve_certified(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, const Candidate& c,
-                         double tolerance) {
-  const int n = plan.degree;
+// The two halves of the conditions above: what the curve's geometry says (off_curve_nearest), and
+// what needs the kernel's gap (off_curve_alone, which also reads the second vector).
+bool off_curve_nearest(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, const Candidate& c) {
   if (c.on_curve || !(c.t > 0.0 && c.t < 1.0) || !std::isfinite(c.distance)) return false;
   if (!detail::nearest_on_segment(plan, w.u[l], w.v[l], c.t, c.distance)) return false;
   const detail::CurveJet jet = detail::curve_jet(plan, c.t);
   const double along = (jet.x - w.u[l]) * jet.dx + (jet.y - w.v[l]) * jet.dy;
-  if (!(std::abs(along) <= kStationaryCosine * c.distance * std::hypot(jet.dx, jet.dy))) return false;
-  return n < 3 || w.estimate[kBatchLanes + l] >= kFastPathGapRatio || extension_roots_clear(plan, w, l, tolerance);
+  return std::abs(along) <= kStationaryCosine * c.distance * std::hypot(jet.dx, jet.dy);
+}
+
+bool off_curve_alone(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, double tolerance) {
+  return plan.degree < 3 || w.estimate[kBatchLanes + l] >= kFastPathGapRatio ||
+         extension_roots_clear(plan, w, l, tolerance);
+}
+
+// The fast path's decision for lane l, refined to c, with the kernel's gap: answered here (ok, or
+// off_curve where off_curve_nearest and off_curve_alone hold), after the second-parameter check,
+// or left to the SVD path (still active). `asked`: the curve's geometry was asked already (the gap
+// pass): on the segment the isolation certificate refused the lane, off it off_curve_nearest held.
+void decide_with_gap(const InversionPlan& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
+                     double tolerance, bool asked, PointResult& result) {
+  const int n = plan.degree;
+  const std::size_t stride = kBatchLanes;
+  if (!c.on_segment) {
+    if ((asked || off_curve_nearest(plan, w, l, c)) && off_curve_alone(plan, w, l, tolerance)) {
+      w.active[l] = 0;
+      answer_fast(plan, c.t, c.distance, w.estimate[l], w.estimate[stride + l], result, Status::off_curve);
+    }
+    return;
+  }
+  // Answered now, or after the second-parameter check (flush_pair_check_queue): either way the
+  // lane leaves the batch.
+  w.active[l] = 0;
+  if ((w.estimate[stride + l] >= kFastPathGapRatio || n < 3) ||
+      (!asked && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance)) ||
+      !queue_second_parameters(n, w, l, c, &result))
+    answer_fast(plan, c.t, c.distance, w.estimate[l], w.estimate[stride + l], result);
 }
 
 // Stages 2-5 for the m lanes the fast path left (all lanes without it), compacted: lane k's B is
@@ -730,13 +766,33 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
   // always answered there), as does a lane whose estimate is below kFastPathMinGap. Every other
   // lane goes on to the SVD path below, which decides as before.
   // With refinement off the output is the paper's algebraic t, so it always comes from the SVD.
+  //
+  // The gap last (degree >= 3). The sigma_{n-1} estimate costs 8 of the kernel's 11 solves, and on
+  // the curve the isolation certificate settles what it is for: that P0 has no second parameter on
+  // the segment within the tolerance (engine/src/isolation.hpp), and so that the SVD path, whose
+  // double_point needs one, would answer ok at the same t. So the kernel first runs without the
+  // gap (null_vector_without_gap: the same z, and a defect from z's settling alone), and a lane
+  // refined onto the segment that the certificate covers is answered with sigma_next = NaN: no gap
+  // decided it. The others (not certified, or off the curve with a nearest point the geometry
+  // proves, off_curve_nearest) are gathered and run through the full kernel, whose z is the same
+  // bits, and go on as with the gap from the start (decide_with_gap). A lane whose z had not
+  // settled goes to the SVD path either way. Measured before the gap pass existed, with the
+  // deflated iterations simply removed, the pipeline gained 1.5x / 1.6x / 1.8x / 1.6x at degrees
+  // 5 / 8 / 15 / 20 (1 thread; BENCHMARKS.md has the gap pass's own figures). Degree 2 keeps the
+  // full kernel: two solves of a 2 x 2 system, and an exact gap.
   if (options.fast_path && options.refine && n >= 2 && n <= kFastPathMaxDegree) {
-    kernels::active_implementation().null_vector(n, count, stride, w.B.data(), w.z.data(), w.defect.data(),
-                                                 w.estimate.data(), w.second.data());
+    const kernels::Implementation& kernel = kernels::active_implementation();
+    const bool gap_last = n >= 3;
+    if (gap_last)
+      kernel.null_vector_without_gap(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data());
+    else
+      kernel.null_vector(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),
+                         w.second.data());
     clock.lap(&StageSeconds::kernel);
-    kernels::active_implementation().bernstein_parameter(n, count, stride, w.z.data(), w.t_algebraic.data());
+    kernel.bernstein_parameter(n, count, stride, w.z.data(), w.t_algebraic.data());
     for (std::size_t l = 0; l < count; ++l)
-      if (!w.active[l] || !(w.defect[l] <= kFastPathMaxDefect) || !(w.estimate[stride + l] >= kFastPathMinGap))
+      if (!w.active[l] || !(w.defect[l] <= kFastPathMaxDefect) ||
+          (!gap_last && !(w.estimate[stride + l] >= kFastPathMinGap)))
         w.t_algebraic[l] = PointResult::nan;
     clock.lap(&StageSeconds::read_out);
     // Refinement, lane-batched: the kernel runs refine.cpp's safeguarded Newton for every lane whose
@@ -745,9 +801,10 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     // also looks along the extension).
     std::copy_n(w.t_algebraic.begin(), count, w.t_refined.begin());
     const kernels::RationalCurve curve = detail::kernel_curve(plan);
-    kernels::active_implementation().rational_newton(curve, detail::kNewtonSettings, count, w.u.data(), w.v.data(),
-                                                     w.t_refined.data(), w.distance.data());
+    kernel.rational_newton(curve, detail::kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(),
+                           w.distance.data());
     detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
+    std::size_t waiting = 0;  // lanes of the gap pass
     for (std::size_t l = 0; l < count; ++l) {
       if (!std::isfinite(w.t_algebraic[l])) continue;
       Candidate& c = w.main[l];
@@ -762,22 +819,37 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
         c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
       }
       if (w.drops[l]) continue;
-      if (!c.on_segment) {
-        if (off_curve_certified(plan, w, l, c, tolerance)) {
-          w.active[l] = 0;
-          answer_fast(plan, c.t, c.distance, w.estimate[l], w.estimate[stride + l], results[l], Status::off_curve);
-        }
-        continue;
+      if (!gap_last) {
+        decide_with_gap(plan, w, l, c, tolerance, false, results[l]);
+      } else if (c.on_segment && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance)) {
+        w.active[l] = 0;
+        answer_fast(plan, c.t, c.distance, w.estimate[l], PointResult::nan, results[l]);
+      } else if (c.on_segment || off_curve_nearest(plan, w, l, c)) {
+        w.gap_lane_of[waiting++] = static_cast<std::uint8_t>(l);
       }
-      // Answered now, or after the second-parameter check (flush_pair_check_queue): either way the
-      // lane leaves the batch.
-      w.active[l] = 0;
-      if ((w.estimate[stride + l] >= kFastPathGapRatio || n < 3) ||
-          detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance) ||
-          !queue_second_parameters(n, w, l, c, &results[l]))
-        answer_fast(plan, c.t, c.distance, w.estimate[l], w.estimate[stride + l], results[l]);
     }
     clock.lap(&StageSeconds::refine);
+    if (waiting > 0) {
+      // The gap pass: the full kernel for the waiting lanes, compacted, its results put back in
+      // their lanes (z is the same bits: null_vector_without_gap).
+      for (std::size_t k = 0; k < waiting; ++k)
+        for (int i = 0; i < nn; ++i) w.gap_B[i * stride + k] = w.B[i * stride + w.gap_lane_of[k]];
+      kernel.null_vector(n, waiting, stride, w.gap_B.data(), w.gap_z.data(), w.gap_defect.data(),
+                         w.gap_estimate.data(), w.gap_second.data());
+      for (std::size_t k = 0; k < waiting; ++k) {
+        const std::size_t l = w.gap_lane_of[k];
+        for (int r = 0; r < n; ++r) w.second[r * stride + l] = w.gap_second[r * stride + k];
+        w.defect[l] = w.gap_defect[k];
+        w.estimate[stride + l] = w.gap_estimate[stride + k];
+      }
+      clock.lap(&StageSeconds::kernel);
+      for (std::size_t k = 0; k < waiting; ++k) {
+        const std::size_t l = w.gap_lane_of[k];
+        if (w.defect[l] <= kFastPathMaxDefect && w.estimate[stride + l] >= kFastPathMinGap)
+          decide_with_gap(plan, w, l, w.main[l], tolerance, true, results[l]);
+      }
+      clock.lap(&StageSeconds::refine);
+    }
   }
 
   // The SVD path for the lanes still undecided, compacted to the front of the batch (in order, so

@@ -47,6 +47,7 @@
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
+#include "isolation.hpp"
 
 namespace bezinv {
 namespace {
@@ -483,7 +484,7 @@ TEST(InvertProperty, QueuedSvdLanesAnswerAsAlone) {
 TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
   Measured m{"fast path vs SVD path (same rows)"};
   const InvertOptions svd_only{.fast_path = false};
-  std::size_t fast_rows = 0, fast_off_curve_rows = 0, rows = 0;
+  std::size_t fast_rows = 0, fast_off_curve_rows = 0, rows = 0, certified_rows = 0, gap_rows = 0;
   std::size_t double_points = 0, near_crossing = 0, near_crossing_double = 0;
   double worst_over = 0;  // sigma_next estimate / the SVD's sigma_{n-1}/sigma_1 (>= the over-estimate)
   auto compare = [&](const Case& c, const KnownPoint& k, double tolerance = kDefaultRelativeTolerance) {
@@ -511,6 +512,20 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
     }
     EXPECT_LE(dt, 2 * parameter_bound(c, k)) << "fast: " << describe(c, k, fast) << "\nsvd: " << describe(c, k, svd);
     EXPECT_LE(std::abs(fast.residual - svd.residual), residual_bound(c, k)) << describe(c, k, fast);
+    // No gap estimate exactly where the isolation certificate decided (degree >= 3, on the segment):
+    // no other parameter of the segment is within the tolerance, so the SVD path's search for one,
+    // wherever its sigma_{n-1} sent it there, found none (the statuses agree above).
+    const auto p0 = c.plan.normalize(k.point.x, k.point.y);
+    const bool certified = c.plan.degree >= 3 && fast.status == Status::ok &&
+                           detail::isolated(c.plan, p0[0], p0[1], fast.t, fast.residual / c.plan.scale,
+                                            tolerance * c.plan.diagonal / c.plan.scale);
+    EXPECT_EQ(std::isnan(fast.sigma_next), certified) << describe(c, k, fast);
+    if (certified) {
+      ++certified_rows;
+      m.add(dt, dt / parameter_bound(c, k), std::abs(fast.residual - svd.residual) / c.plan.diagonal);
+      return;
+    }
+    ++gap_rows;
     // The evidence: the sigma_{n-1} estimate is from above and relative to ||B||_F >= sigma_1; when
     // it cleared kFastPathGapRatio the SVD path did not look for a second parameter either.
     worst_over = std::max(worst_over, fast.sigma_next / svd.sigma_next);
@@ -552,10 +567,15 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
     }
   RecordProperty("fast_rows", static_cast<int>(fast_rows));
   RecordProperty("fast_off_curve_rows", static_cast<int>(fast_off_curve_rows));
+  RecordProperty("certified_rows", static_cast<int>(certified_rows));
+  RecordProperty("gap_rows", static_cast<int>(gap_rows));
   RecordProperty("rows", static_cast<int>(rows));
-  std::printf("[ measured ] fast path answered %zu of %zu rows (%zu off the curve); sigma_next estimate / SVD's at most "
-              "%.3g\n", fast_rows, rows, fast_off_curve_rows, worst_over);
+  std::printf("[ measured ] fast path answered %zu of %zu rows (%zu off the curve; %zu certified, without a gap); "
+              "sigma_next estimate / SVD's at most %.3g over %zu rows\n",
+              fast_rows, rows, fast_off_curve_rows, certified_rows, worst_over, gap_rows);
   EXPECT_GT(fast_rows, rows / 5);  // the comparison is not vacuous
+  EXPECT_GT(certified_rows, rows / 10);
+  EXPECT_GT(gap_rows, 100u);
   EXPECT_GT(fast_off_curve_rows, 40u);
   // ... and most on-branch points near a crossing are double points under those tolerances.
   EXPECT_GT(near_crossing_double, near_crossing / 2) << near_crossing_double << " of " << near_crossing;

@@ -300,6 +300,55 @@ TEST(BatchNullVector, RankDeficientByConstruction) {
   RecordProperty("least_second_in_null_space", sci(least_second_in_null_space));
 }
 
+// null_vector_without_gap is null_vector without the deflated iterations: the same z and residual
+// bit for bit, and a defect that is null_vector's measure 1 alone, so that null_vector's defect is
+// the larger of it and eps / (its sigma_{n-1} estimate) (the engine redoes with null_vector the lanes
+// it cannot settle otherwise, and relies on both).
+TEST(BatchNullVector, WithoutGapIsTheSameNullVector) {
+  std::mt19937_64 rng(11);
+  std::size_t lanes = 0, gap_decided = 0;
+  for (int n = 1; n <= kMaxBatchSize; ++n) {
+    for (std::size_t count : {std::size_t{3}, std::size_t{17}, std::size_t{64}}) {
+      std::vector<Dense> matrices;
+      for (std::size_t l = 0; l < count; ++l) {
+        const int nullity = n >= 2 ? static_cast<int>(l % 3) : static_cast<int>(l % 2);  // 0, 1, 2 in turn
+        matrices.push_back(with_nullity(n, nullity, rng).b);
+      }
+      for (const Implementation* impl : available_implementations()) {
+        SCOPED_TRACE(label(*impl, n, count));
+        std::mt19937_64 junk(n);
+        Batch a(matrices, junk);
+        a.run(*impl);
+        std::vector<double> z(a.z.size(), kNaN), defect(a.stride, kNaN), residual(2 * a.stride, kNaN);
+        impl->null_vector_without_gap(n, count, a.stride, a.B.data(), z.data(), defect.data(), residual.data());
+        for (std::size_t l = 0; l < a.stride; ++l) {
+          if (l >= count) {  // padding: untouched
+            EXPECT_TRUE(std::isnan(defect[l]) && std::isnan(residual[l])) << "lane " << l;
+            continue;
+          }
+          ++lanes;
+          for (int r = 0; r < n; ++r) EXPECT_EQ(z[r * a.stride + l], a.z[r * a.stride + l]) << "lane " << l << " z " << r;
+          EXPECT_EQ(residual[l], a.estimate[l]) << "lane " << l;
+          EXPECT_LE(defect[l], a.defect[l]) << "lane " << l;
+          const double bound = std::min(1.0, kEps / a.estimate[a.stride + l]);  // eps * the growth
+          if (a.defect[l] != defect[l]) {
+            ++gap_decided;
+            EXPECT_NEAR(a.defect[l], bound, 1e-12 * bound) << "lane " << l;
+          }
+        }
+        for (std::size_t l = 0; l < 2 * a.stride; ++l) {
+          if (l >= a.stride || l >= count) {
+            EXPECT_TRUE(std::isnan(residual[l])) << "no sigma_{n-1} row, no padding lane: " << l;
+          }
+        }
+      }
+    }
+  }
+  RecordProperty("lanes", static_cast<int>(lanes));
+  RecordProperty("lanes_whose_defect_the_gap_decided", static_cast<int>(gap_decided));
+  EXPECT_GT(gap_decided, lanes / 10);  // the nullity-2 lanes at least: the comparison is not vacuous
+}
+
 // The smallest singular vector of a nearly singular matrix with sigma_{n-1} / sigma_1 = 1e-6,
 // against Eigen::JacobiSVD (the accuracy target of the contract).
 TEST(BatchSymmetricSvd, SmallestVectorWithSmallGap) {

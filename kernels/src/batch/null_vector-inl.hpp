@@ -238,7 +238,9 @@ HWY_INLINE hn::Vec<D> ritz_growth(D d, const double* HWY_RESTRICT u, const doubl
 // Rank n-1 with sigma_{n-1} >= 1e-4 ||B||: both ~1e-12 or less. Capped at 1. Whether B is singular
 // at all is the residual's to say (||B z|| / ||B||_F, reported apart): a point near the curve but
 // off it has a slightly regular B whose z is as good a seed as a null vector.
-template <int N, class D>
+// kGap false (null_vector_without_gap): measure 1 alone, and no deflated iterations, no sigma_{n-1}
+// estimate, no second vector; z, the residual and measure 1 are the same bits as with kGap.
+template <int N, bool kGap, class D>
 HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, std::size_t lanes,
                                     const double* HWY_RESTRICT B, double* HWY_RESTRICT z,
                                     double* HWY_RESTRICT defect, double* HWY_RESTRICT estimate,
@@ -284,8 +286,8 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
   auto result = unsettled;
   auto next = hn::Set(d, std::numeric_limits<double>::infinity());  // n = 1: no sigma_{n-1}
 
-  HWY_ALIGN double w_lanes[N * L];  // the deflated iterate: ~ the singular vector of sigma_{n-1}
-  if constexpr (N > 1) {
+  HWY_ALIGN double w_lanes[kGap ? N * L : 1];  // the deflated iterate: ~ the singular vector of sigma_{n-1}
+  if constexpr (N > 1 && kGap) {
     double* HWY_RESTRICT w = w_lanes;
     // w: a fixed vector of mixed signs and sizes, then kept orthogonal to z after every solve (the
     // solve re-amplifies the rounding-level z component by 1/eps).
@@ -335,10 +337,10 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
     hn::StoreU(result, d, defect + first);
     if (estimate) {
       hn::StoreU(residual_out, d, estimate + first);
-      hn::StoreU(next, d, estimate + stride + first);
+      if constexpr (kGap) hn::StoreU(next, d, estimate + stride + first);
     }
     for (int r = 0; r < N; ++r) {
-      if constexpr (N > 1)
+      if constexpr (N > 1 && kGap)
         if (second) hn::StoreU(hn::Load(d, w_lanes + r * L), d, second + r * stride + first);
       hn::StoreU(hn::Load(d, x + r * L), d, z + r * stride + first);
     }
@@ -352,9 +354,9 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
     defect[first + l] = defect_lanes[l];
     if (estimate) {
       estimate[first + l] = residual_lanes[l];
-      estimate[stride + first + l] = next_lanes[l];
+      if constexpr (kGap) estimate[stride + first + l] = next_lanes[l];
     }
-    if constexpr (N > 1)
+    if constexpr (N > 1 && kGap)
       if (second)
         for (int r = 0; r < N; ++r) second[static_cast<std::size_t>(r) * stride + first + l] = w_lanes[r * L + l];
     for (int r = 0; r < N; ++r) z[static_cast<std::size_t>(r) * stride + first + l] = x[r * L + l];
@@ -373,22 +375,30 @@ inline constexpr int kWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == H
                                     : N <= 8                                                        ? 4
                                                                                                     : 2;
 
-template <int N>
+template <int N, bool kGap>
 void null_vector_fixed(std::size_t count, std::size_t stride, const double* B, double* z, double* defect,
                        double* estimate, double* second) {
   using Wide = wide::Tag<kWideVectors<N>>;
   constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(wide::Tag<1>());
   std::size_t first = 0;
   for (; first < count && first + LW <= stride; first += LW)  // whole wide groups inside the rows
-    null_vector_group<N>(Wide(), stride, first, std::min(LW, count - first), B, z, defect, estimate, second);
+    null_vector_group<N, kGap>(Wide(), stride, first, std::min(LW, count - first), B, z, defect, estimate, second);
   for (; first < count; first += L1)
-    null_vector_group<N>(wide::Tag<1>(), stride, first, std::min(L1, count - first), B, z, defect, estimate, second);
+    null_vector_group<N, kGap>(wide::Tag<1>(), stride, first, std::min(L1, count - first), B, z, defect, estimate,
+                               second);
 }
 
 void null_vector_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z, double* defect,
                        double* estimate, double* second) {
   dispatch_size(n, [&](auto size) {
-    null_vector_fixed<decltype(size)::value>(count, stride, B, z, defect, estimate, second);
+    null_vector_fixed<decltype(size)::value, true>(count, stride, B, z, defect, estimate, second);
+  });
+}
+
+void null_vector_without_gap_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z,
+                                   double* defect, double* residual) {
+  dispatch_size(n, [&](auto size) {
+    null_vector_fixed<decltype(size)::value, false>(count, stride, B, z, defect, residual, nullptr);
   });
 }
 
