@@ -85,14 +85,14 @@ void BM_KernelNullVector(benchmark::State& state, const Implementation* impl, in
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
 }
 
-// The same without the sigma_{n-1} estimate (what the engine runs first, see invert.cpp).
-void BM_KernelNullVectorWithoutGap(benchmark::State& state, const Implementation* impl, int n) {
+// The seed: LDL^T without pivoting, no sigma_{n-1} estimate (what the engine runs first, see invert.cpp).
+void BM_KernelNullVectorSeed(benchmark::State& state, const Implementation* impl, int n) {
   const Inputs& in = inputs(n);
   const std::size_t stride = batch_stride(kBatch);
   std::vector<double> z(n * stride), defect(stride), residual(stride);
   std::size_t b = 0;
   for (auto _ : state) {
-    impl->null_vector_without_gap(n, kBatch, stride, in.batches[b].data(), z.data(), defect.data(), residual.data());
+    impl->null_vector_seed(n, kBatch, stride, in.batches[b].data(), z.data(), defect.data(), residual.data());
     benchmark::DoNotOptimize(z.data());
     benchmark::ClobberMemory();
     b = (b + 1) % in.batches.size();
@@ -151,8 +151,8 @@ int register_kernels() {
       const std::string null = std::string("BM_KernelNullVector").append(suffix);
       benchmark::RegisterBenchmark(svd.c_str(), BM_KernelSymmetricSvd, impl, n);
       benchmark::RegisterBenchmark(null.c_str(), BM_KernelNullVector, impl, n);
-      const std::string without_gap = std::string("BM_KernelNullVectorWithoutGap").append(suffix);
-      benchmark::RegisterBenchmark(without_gap.c_str(), BM_KernelNullVectorWithoutGap, impl, n);
+      const std::string seed = std::string("BM_KernelNullVectorSeed").append(suffix);
+      benchmark::RegisterBenchmark(seed.c_str(), BM_KernelNullVectorSeed, impl, n);
       const std::string bezout = std::string("BM_KernelBezoutMatrix").append(suffix);
       benchmark::RegisterBenchmark(bezout.c_str(), BM_KernelBezoutMatrix, impl, n);
     }

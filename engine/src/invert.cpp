@@ -767,24 +767,27 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
   // lane goes on to the SVD path below, which decides as before.
   // With refinement off the output is the paper's algebraic t, so it always comes from the SVD.
   //
-  // The gap last (degree >= 3). The sigma_{n-1} estimate costs 8 of the kernel's 11 solves, and on
-  // the curve the isolation certificate settles what it is for: that P0 has no second parameter on
-  // the segment within the tolerance (engine/src/isolation.hpp), and so that the SVD path, whose
-  // double_point needs one, would answer ok at the same t. So the kernel first runs without the
-  // gap (null_vector_without_gap: the same z, and a defect from z's settling alone), and a lane
-  // refined onto the segment that the certificate covers is answered with sigma_next = NaN: no gap
-  // decided it. The others (not certified, or off the curve with a nearest point the geometry
-  // proves, off_curve_nearest) are gathered and run through the full kernel, whose z is the same
-  // bits, and go on as with the gap from the start (decide_with_gap). A lane whose z had not
-  // settled goes to the SVD path either way. Measured before the gap pass existed, with the
-  // deflated iterations simply removed, the pipeline gained 1.5x / 1.6x / 1.8x / 1.6x at degrees
-  // 5 / 8 / 15 / 20 (1 thread; BENCHMARKS.md has the gap pass's own figures). Degree 2 keeps the
-  // full kernel: two solves of a 2 x 2 system, and an exact gap.
+  // Two passes (degree >= 3). The full kernel spends 8 of its 11 solves on the sigma_{n-1}
+  // estimate, and its factorization on per-lane row swaps; on the curve, the isolation certificate
+  // settles what the estimate is for: that P0 has no second parameter on the segment within the
+  // tolerance (engine/src/isolation.hpp), so that the SVD path, whose double_point needs one, would
+  // answer ok at the same t. So:
+  //   1. the seed kernel (null_vector_seed: L D L^T without pivoting, three inverse iterations, no
+  //      gap) for every lane, read out and refined; a lane refined onto the segment that the
+  //      certificate covers is answered here, with sigma_next = NaN (no gap decided it). How good
+  //      its seed was does not matter: the answer is checked on its own.
+  //   2. every other lane but a degree drop's is gathered and run through the full kernel
+  //      (pivoted LU, the gap and the second vector), and goes on as with the gap from the start
+  //      (decide_with_gap). Its candidate from pass 1 is kept where it is one the SVD path could
+  //      give: on the segment within the tolerance (the second-parameter check then looks for any
+  //      other), or off the curve and proved the nearest point of the segment (off_curve_nearest).
+  //      The others are read out again from the pivoted z and refined (settle()), as before.
+  // Degree 2 keeps the full kernel alone: two solves of a 2 x 2 system, and an exact gap.
   if (options.fast_path && options.refine && n >= 2 && n <= kFastPathMaxDegree) {
     const kernels::Implementation& kernel = kernels::active_implementation();
-    const bool gap_last = n >= 3;
-    if (gap_last)
-      kernel.null_vector_without_gap(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data());
+    const bool two_passes = n >= 3;
+    if (two_passes)
+      kernel.null_vector_seed(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data());
     else
       kernel.null_vector(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),
                          w.second.data());
@@ -792,7 +795,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     kernel.bernstein_parameter(n, count, stride, w.z.data(), w.t_algebraic.data());
     for (std::size_t l = 0; l < count; ++l)
       if (!w.active[l] || !(w.defect[l] <= kFastPathMaxDefect) ||
-          (!gap_last && !(w.estimate[stride + l] >= kFastPathMinGap)))
+          (!two_passes && !(w.estimate[stride + l] >= kFastPathMinGap)))
         w.t_algebraic[l] = PointResult::nan;
     clock.lap(&StageSeconds::read_out);
     // Refinement, lane-batched: the kernel runs refine.cpp's safeguarded Newton for every lane whose
@@ -804,49 +807,61 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     kernel.rational_newton(curve, detail::kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(),
                            w.distance.data());
     detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
-    std::size_t waiting = 0;  // lanes of the gap pass
+    std::size_t waiting = 0;                           // lanes of pass 2
+    std::array<std::uint8_t, kBatchLanes> candidate;  // pass 2: the lane keeps its candidate w.main[l]
     for (std::size_t l = 0; l < count; ++l) {
-      if (!std::isfinite(w.t_algebraic[l])) continue;
+      if (!w.active[l] || w.drops[l]) continue;
       Candidate& c = w.main[l];
-      const bool at_end = w.t_refined[l] == 0.0 || w.t_refined[l] == 1.0;
-      if (std::isfinite(w.distance[l]) && !(at_end && !(w.distance[l] <= tolerance))) {
-        c = Candidate{};
-        c.t = w.t_refined[l];
-        c.distance = w.distance[l];
-        c.path = Path::bezout_lu;
-        classify(c, tolerance);
-      } else {
-        c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
+      bool refined = std::isfinite(w.t_algebraic[l]);
+      if (refined) {
+        const bool at_end = w.t_refined[l] == 0.0 || w.t_refined[l] == 1.0;
+        if (std::isfinite(w.distance[l]) && !(at_end && !(w.distance[l] <= tolerance))) {
+          c = Candidate{};
+          c.t = w.t_refined[l];
+          c.distance = w.distance[l];
+          c.path = Path::bezout_lu;
+          classify(c, tolerance);
+        } else {
+          c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
+        }
       }
-      if (w.drops[l]) continue;
-      if (!gap_last) {
-        decide_with_gap(plan, w, l, c, tolerance, false, results[l]);
-      } else if (c.on_segment && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance)) {
+      if (!two_passes) {
+        if (refined) decide_with_gap(plan, w, l, c, tolerance, false, results[l]);
+        continue;
+      }
+      if (refined && c.on_segment && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance)) {
         w.active[l] = 0;
         answer_fast(plan, c.t, c.distance, w.estimate[l], PointResult::nan, results[l]);
-      } else if (c.on_segment || off_curve_nearest(plan, w, l, c)) {
-        w.gap_lane_of[waiting++] = static_cast<std::uint8_t>(l);
+        continue;
       }
+      candidate[waiting] = refined && (c.on_segment || off_curve_nearest(plan, w, l, c));
+      w.gap_lane_of[waiting++] = static_cast<std::uint8_t>(l);
     }
     clock.lap(&StageSeconds::refine);
     if (waiting > 0) {
-      // The gap pass: the full kernel for the waiting lanes, compacted, its results put back in
-      // their lanes (z is the same bits: null_vector_without_gap).
+      // Pass 2: the full kernel for the waiting lanes, compacted, its results put back in their lanes.
       for (std::size_t k = 0; k < waiting; ++k)
         for (int i = 0; i < nn; ++i) w.gap_B[i * stride + k] = w.B[i * stride + w.gap_lane_of[k]];
       kernel.null_vector(n, waiting, stride, w.gap_B.data(), w.gap_z.data(), w.gap_defect.data(),
                          w.gap_estimate.data(), w.gap_second.data());
+      kernel.bernstein_parameter(n, waiting, stride, w.gap_z.data(), w.t_algebraic.data());
       for (std::size_t k = 0; k < waiting; ++k) {
         const std::size_t l = w.gap_lane_of[k];
-        for (int r = 0; r < n; ++r) w.second[r * stride + l] = w.gap_second[r * stride + k];
+        for (int r = 0; r < n; ++r) {
+          w.z[r * stride + l] = w.gap_z[r * stride + k];
+          w.second[r * stride + l] = w.gap_second[r * stride + k];
+        }
         w.defect[l] = w.gap_defect[k];
+        w.estimate[l] = w.gap_estimate[k];
         w.estimate[stride + l] = w.gap_estimate[stride + k];
       }
       clock.lap(&StageSeconds::kernel);
       for (std::size_t k = 0; k < waiting; ++k) {
         const std::size_t l = w.gap_lane_of[k];
-        if (w.defect[l] <= kFastPathMaxDefect && w.estimate[stride + l] >= kFastPathMinGap)
-          decide_with_gap(plan, w, l, w.main[l], tolerance, true, results[l]);
+        if (!(w.defect[l] <= kFastPathMaxDefect) || !(w.estimate[stride + l] >= kFastPathMinGap)) continue;
+        if (!candidate[k])
+          w.main[l] = settle(plan, w.u[l], w.v[l], w.t_algebraic[k], Path::bezout_lu, tolerance, true);
+        decide_with_gap(plan, w, l, w.main[l], tolerance, candidate[k], results[l]);
       }
       clock.lap(&StageSeconds::refine);
     }

@@ -32,14 +32,14 @@ struct Table {
     for (std::size_t i = 0; i < kCandidates.size(); ++i) {
       const auto svd = batch::symmetric_svd_kernel(kCandidates[i].target);
       const auto null = batch::null_vector_kernel(kCandidates[i].target);
-      const auto null_without_gap = batch::null_vector_without_gap_kernel(kCandidates[i].target);
+      const auto null_seed = batch::null_vector_seed_kernel(kCandidates[i].target);
       const auto newton = batch::rational_newton_kernel(kCandidates[i].target);
       const auto parameter = batch::bernstein_parameter_kernel(kCandidates[i].target);
       const auto bezout = batch::bezout_matrix_kernel(kCandidates[i].target);
-      if (svd == nullptr || null == nullptr || null_without_gap == nullptr || newton == nullptr ||
+      if (svd == nullptr || null == nullptr || null_seed == nullptr || newton == nullptr ||
           parameter == nullptr || bezout == nullptr || (supported & kCandidates[i].target) == 0)
         continue;
-      storage[count] = Implementation{kCandidates[i].name, svd, null, null_without_gap, newton, parameter, bezout};
+      storage[count] = Implementation{kCandidates[i].name, svd, null, null_seed, newton, parameter, bezout};
       available[count] = &storage[count];
       ++count;
     }

@@ -12,7 +12,7 @@ using SymmetricSvdKernel = void (*)(int n, std::size_t count, std::size_t stride
                                     double* V);
 using NullVectorKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                                   double* defect, double* estimate, double* second);
-using NullVectorWithoutGapKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
+using NullVectorSeedKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                                             double* defect, double* residual);
 using RationalNewtonKernel = void (*)(const RationalCurve& curve, const NewtonSettings& settings,
                                       std::size_t count, const double* u, const double* v, double* t,
@@ -25,7 +25,7 @@ using BezoutMatrixKernel = void (*)(int n, std::size_t count, std::size_t stride
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);
 NullVectorKernel null_vector_kernel(std::int64_t target);
-NullVectorWithoutGapKernel null_vector_without_gap_kernel(std::int64_t target);
+NullVectorSeedKernel null_vector_seed_kernel(std::int64_t target);
 RationalNewtonKernel rational_newton_kernel(std::int64_t target);
 BernsteinParameterKernel bernstein_parameter_kernel(std::int64_t target);
 BezoutMatrixKernel bezout_matrix_kernel(std::int64_t target);

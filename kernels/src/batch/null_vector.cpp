@@ -19,8 +19,8 @@ NullVectorKernel null_vector_kernel(std::int64_t target) {
   return for_target<NullVectorKernel>(target, BEZINV_PER_TARGET(null_vector_batch));
 }
 
-NullVectorWithoutGapKernel null_vector_without_gap_kernel(std::int64_t target) {
-  return for_target<NullVectorWithoutGapKernel>(target, BEZINV_PER_TARGET(null_vector_without_gap_batch));
+NullVectorSeedKernel null_vector_seed_kernel(std::int64_t target) {
+  return for_target<NullVectorSeedKernel>(target, BEZINV_PER_TARGET(null_vector_seed_batch));
 }
 
 }  // namespace bezinv::kernels::batch

@@ -65,15 +65,18 @@ struct Implementation {
   void (*null_vector)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                       double* defect, double* estimate, double* second);
 
-  // null_vector without the inverse iterations orthogonal to z: the same bits of z and of
-  // residual[l] = ||B z|| / ||B||_F (estimate[l] above), and defect[l] from the iterates' settling
-  // alone, <= null_vector's defect (which also bounds z's forward error by eps / sigma_{n-1}, and is
-  // ~1 at nullity 2 where this one need not be). For callers that settle a lane's uniqueness by
-  // other means and redo with null_vector the lanes they cannot (the engine's isolation
-  // certificate): the deflated iterations are 8 of the 11 solves, and this kernel is 1.6-2x faster
-  // from n = 5 (bench/kernels_bench.cpp).
-  void (*null_vector_without_gap)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
-                                  double* defect, double* residual);
+  // A cheaper null vector, for a seed: the same three inverse iterations from (1, ..., 1), but
+  // with B = L D L^T factored without pivoting (n^3 / 6 multiply-adds, no per-lane row swaps) and
+  // without the iterations orthogonal to z (no sigma_{n-1} estimate, no second vector). Writes z
+  // (unit 2-norm), residual[l] = ||B z|| / ||B||_F and defect[l] = how far the last iterates are
+  // from settling (null_vector's measure 1 alone). Unpivoted, z may be poor where a leading
+  // principal minor of B nearly vanishes (on the curve only the last one does, see
+  // null_vector-inl.hpp, LaneLdl), and a settled z is not proof of a simple null vector: callers
+  // check what they make of it by other means and redo with null_vector the lanes they cannot
+  // (the engine's isolation certificate). Reads only B's lower triangle. 2-4x faster than
+  // null_vector (bench/kernels_bench.cpp).
+  void (*null_vector_seed)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
+                           double* defect, double* residual);
 
   // Newton's method for the nearest point of `curve` to (u[l], v[l]) on the segment [0, 1], one
   // point per lane from the start t[l]: the engine's safeguarded refinement (engine/src/refine.hpp,
