@@ -157,16 +157,15 @@ struct LaneLu {
 // the diagonal, D on it, from B's lower triangle (the upper is never read). n^3 / 6 multiply-adds
 // against LU's n^3 / 3, and no per-lane row swaps, which took half of the LU's time (the
 // factorization alone, measured: 2.4x faster at n = 8, 3x at n = 15).
-// Why it works without pivoting on a Bezout matrix. Its leading principal minors are, up to sign
-// and a constant, the subresultants of p and q (Bezout matrices and subresultants: the k-th
-// leading minor vanishes exactly when p and q have a common factor of degree >= n - k + 1), so at
-// a point with one common root (on the curve) only the last pivot vanishes; it is replaced by
-// +-eps, and the solves amplify the null direction by ~1/eps, as inverse iteration wants.
-// Elsewhere a pivot is small only near points where p and q nearly share two roots, and that
-// lane's z is then poor: it is only the seed of the engine's refinement, whose answer is checked on
-// its own (the isolation certificate), and every lane the engine cannot settle that way is redone
-// with null_vector, pivoted. Measured with Newton from the seed on 80k on-curve points of random
-// curves (degrees 3-20, both kinds): every seed refined to the true parameter.
+// Why no pivoting is good enough here. Without pivoting L D L^T = B + E with ||E|| ~ eps times the
+// growth of the entries, which a small pivot d_k makes large (1 / d_k); the null vector of B is
+// then a null vector of L D L^T up to ||E|| / sigma_{n-1}, and inverse iteration converges to it as
+// with pivoting while that stays small. On Bezout matrices of on-curve points of random curves
+// (degrees 3-20, both kinds, perturbed arcs and unit squares, 4,096 points each, B normalised) the
+// least pivot before the last was 5e-12 and the 1st percentile 5e-7 to 2e-5, and Newton from every
+// one of the 81,920 seeds refined to the point's true parameter. Where the seed is poor anyway, it
+// costs time, not answers: the engine checks what it makes of the seed on its own (the isolation
+// certificate) and redoes every lane it cannot settle that way with null_vector, pivoted.
 template <int N, class D>
 struct LaneLdl {
   static constexpr std::size_t L = hn::MaxLanes(D());
