@@ -812,7 +812,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     for (std::size_t l = 0; l < count; ++l) {
       if (!w.active[l] || w.drops[l]) continue;
       Candidate& c = w.main[l];
-      bool refined = std::isfinite(w.t_algebraic[l]);
+      const bool refined = std::isfinite(w.t_algebraic[l]);
       if (refined) {
         const bool at_end = w.t_refined[l] == 0.0 || w.t_refined[l] == 1.0;
         if (std::isfinite(w.distance[l]) && !(at_end && !(w.distance[l] <= tolerance))) {
@@ -859,8 +859,10 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
       for (std::size_t k = 0; k < waiting; ++k) {
         const std::size_t l = w.gap_lane_of[k];
         if (!(w.defect[l] <= kFastPathMaxDefect) || !(w.estimate[stride + l] >= kFastPathMinGap)) continue;
-        if (!candidate[k])
+        if (!candidate[k]) {
+          if (!std::isfinite(w.t_algebraic[k])) continue;  // nothing to refine: the SVD path
           w.main[l] = settle(plan, w.u[l], w.v[l], w.t_algebraic[k], Path::bezout_lu, tolerance, true);
+        }
         decide_with_gap(plan, w, l, w.main[l], tolerance, candidate[k], results[l]);
       }
       clock.lap(&StageSeconds::refine);

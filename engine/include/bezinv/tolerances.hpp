@@ -32,8 +32,8 @@ inline constexpr double kSecondNullDirectionRatio = 1e-3;
 // Fast path (refinement on): a lane whose null vector comes from LU and inverse iteration is
 // answered without an SVD only when the kernel's evidence rules out what the SVD path would do
 // differently (engine/src/invert.cpp, stages 2-4 of the fast path), or, on the segment, when the
-// isolation certificate does (then no gap is estimated, and the constants below but the defect's
-// bound play no part).
+// isolation certificate does: then no gap is estimated, and of the constants below only
+// kFastPathMaxDefect (on the seed's settling) applies.
 // kFastPathGapRatio: the SVD path looks for a second parameter when sigma_{n-1}/sigma_1 <=
 // kSecondNullDirectionRatio. The fast path's estimate of sigma_{n-1}/||B||_F is from above (at most
 // 1.44x over on the kernel tests' random spectra, kernels/src/batch/constants.hpp) and
