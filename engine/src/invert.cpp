@@ -776,12 +776,21 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
   //      gap) for every lane, read out and refined; a lane refined onto the segment that the
   //      certificate covers is answered here, with sigma_next = NaN (no gap decided it). How good
   //      its seed was does not matter: the answer is checked on its own.
-  //   2. every other lane but a degree drop's is gathered and run through the full kernel
-  //      (pivoted LU, the gap and the second vector), and goes on as with the gap from the start
-  //      (decide_with_gap). Its candidate from pass 1 is kept where it is one the SVD path could
-  //      give: on the segment within the tolerance (the second-parameter check then looks for any
-  //      other), or off the curve and proved the nearest point of the segment (off_curve_nearest).
-  //      The others are read out again from the pivoted z and refined (settle()), as before.
+  //   2. the lanes whose refined point is one the SVD path could answer with, but which the
+  //      geometry alone does not settle: on the segment within the tolerance but not certified
+  //      (the second-parameter check then looks for another), or off the curve and proved the
+  //      nearest point of the segment (off_curve_nearest, then off_curve_alone). They are gathered
+  //      and run through the full kernel (pivoted LU, the gap and the second vector), and go on
+  //      as with the gap from the start (decide_with_gap), keeping their refined point.
+  //   Every other lane goes to the SVD path, as before: a degree drop, a seed that did not settle
+  //   (off the curve B is regular, and z converges at the rate sigma_n / sigma_{n-1} with either
+  //   factorization), a point on the extension, or off the curve and not proved the nearest.
+  //   (Sending those through pass 2 too, to be read out again from the pivoted z, was 2-10%
+  //   slower at noise 1e-4 than this, BM_Engine_refined_noisy, for lanes that nearly all end on
+  //   the SVD path anyway.)
+  // Off the curve the two passes cost 5-10% at noise 1e-5 of the curve's size against the single
+  // pass (the seed is spent on lanes that need the gap); within the tolerance they gain 1.7-1.9x
+  // from degree 8 up, on the curve 1.1-2.3x (BENCHMARKS.md, sixth session).
   // Degree 2 keeps the full kernel alone: two solves of a 2 x 2 system, and an exact gap.
   if (options.fast_path && options.refine && n >= 2 && n <= kFastPathMaxDegree) {
     const kernels::Implementation& kernel = kernels::active_implementation();
@@ -807,8 +816,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     kernel.rational_newton(curve, detail::kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(),
                            w.distance.data());
     detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
-    std::size_t waiting = 0;                           // lanes of pass 2
-    std::array<std::uint8_t, kBatchLanes> candidate;  // pass 2: the lane keeps its candidate w.main[l]
+    std::size_t waiting = 0;  // lanes of pass 2
     for (std::size_t l = 0; l < count; ++l) {
       if (!w.active[l] || w.drops[l]) continue;
       Candidate& c = w.main[l];
@@ -829,13 +837,13 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
         if (refined) decide_with_gap(plan, w, l, c, tolerance, false, results[l]);
         continue;
       }
-      if (refined && c.on_segment && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance)) {
+      if (!refined) continue;  // z did not settle: the SVD path
+      if (c.on_segment && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance)) {
         w.active[l] = 0;
         answer_fast(plan, c.t, c.distance, w.estimate[l], PointResult::nan, results[l]);
-        continue;
+      } else if (c.on_segment || off_curve_nearest(plan, w, l, c)) {
+        w.gap_lane_of[waiting++] = static_cast<std::uint8_t>(l);
       }
-      candidate[waiting] = refined && (c.on_segment || off_curve_nearest(plan, w, l, c));
-      w.gap_lane_of[waiting++] = static_cast<std::uint8_t>(l);
     }
     clock.lap(&StageSeconds::refine);
     if (waiting > 0) {
@@ -844,7 +852,6 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
         for (int i = 0; i < nn; ++i) w.gap_B[i * stride + k] = w.B[i * stride + w.gap_lane_of[k]];
       kernel.null_vector(n, waiting, stride, w.gap_B.data(), w.gap_z.data(), w.gap_defect.data(),
                          w.gap_estimate.data(), w.gap_second.data());
-      kernel.bernstein_parameter(n, waiting, stride, w.gap_z.data(), w.t_algebraic.data());
       for (std::size_t k = 0; k < waiting; ++k) {
         const std::size_t l = w.gap_lane_of[k];
         for (int r = 0; r < n; ++r) {
@@ -858,12 +865,8 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
       clock.lap(&StageSeconds::kernel);
       for (std::size_t k = 0; k < waiting; ++k) {
         const std::size_t l = w.gap_lane_of[k];
-        if (!(w.defect[l] <= kFastPathMaxDefect) || !(w.estimate[stride + l] >= kFastPathMinGap)) continue;
-        if (!candidate[k]) {
-          if (!std::isfinite(w.t_algebraic[k])) continue;  // nothing to refine: the SVD path
-          w.main[l] = settle(plan, w.u[l], w.v[l], w.t_algebraic[k], Path::bezout_lu, tolerance, true);
-        }
-        decide_with_gap(plan, w, l, w.main[l], tolerance, candidate[k], results[l]);
+        if (w.defect[l] <= kFastPathMaxDefect && w.estimate[stride + l] >= kFastPathMinGap)
+          decide_with_gap(plan, w, l, w.main[l], tolerance, true, results[l]);
       }
       clock.lap(&StageSeconds::refine);
     }
