@@ -31,6 +31,23 @@ namespace hn = wide;
 template <int N>
 inline constexpr bool kUnrolledSolve = HWY_TARGET != HWY_SCALAR && HWY_TARGET != HWY_EMU128 && N <= 24;
 
+// f(DN(), g) for each native vector DN of the wide group D, lanes g .. g + MaxLanes(DN()) - 1 (the
+// written-out solves work one native vector at a time, see LaneLu::solve_unrolled).
+template <class D, class F>
+HWY_INLINE void for_each_native_vector(D, F&& f) {
+  using DN = typename D::D;
+  constexpr std::size_t L = hn::MaxLanes(D()), L1 = hwy::HWY_NAMESPACE::MaxLanes(DN());
+  for (std::size_t g = 0; g < L; g += L1) f(DN(), g);
+}
+
+// v <- L^{-1} v for the unit lower triangle L of a factorization (entries at(i, k), i > k),
+// column-oriented: each v_k, once final, is subtracted from the components after it.
+template <int N, class D, class At>
+HWY_INLINE void forward_substitution(D d, At at, hn::Vec<D>* v) {
+  for (int k = 0; k < N; ++k)
+    for (int i = k + 1; i < N; ++i) v[i] = hn::NegMulAdd(hn::Load(d, at(i, k)), v[k], v[i]);
+}
+
 template <int N, class D>
 struct LaneLu {
   static constexpr std::size_t L = hn::MaxLanes(D());
@@ -88,9 +105,7 @@ struct LaneLu {
   // -> 1.1 min for this file, speed unchanged).
   HWY_NOINLINE void solve(D d, double* HWY_RESTRICT x) {
     if constexpr (kUnrolledSolve<N>) {
-      using DN = typename D::D;  // one native vector of the wide group
-      constexpr std::size_t L1 = hwy::HWY_NAMESPACE::MaxLanes(DN());
-      for (std::size_t g = 0; g < L; g += L1) solve_unrolled(DN(), g, x);
+      for_each_native_vector(d, [&](auto dn, std::size_t g) { solve_unrolled(dn, g, x); });
     } else {
       hn::Vec<D> v[N];
       for (int i = 0; i < N; ++i) v[i] = hn::Load(d, x + i * L);
@@ -103,8 +118,7 @@ struct LaneLu {
           v[i] = hn::IfThenElse(swap, a, b);
         }
       }
-      for (int k = 0; k < N; ++k)
-        for (int i = k + 1; i < N; ++i) v[i] = hn::NegMulAdd(hn::Load(d, at(i, k)), v[k], v[i]);
+      forward_substitution<N>(d, [&](int i, int k) { return at(i, k); }, v);
       for (int k = N - 1; k >= 0; --k) {
         v[k] = hn::Mul(v[k], hn::Load(d, inv_pivot + k * L));
         for (int i = 0; i < k; ++i) v[i] = hn::NegMulAdd(hn::Load(d, at(i, k)), v[k], v[i]);
@@ -199,14 +213,11 @@ struct LaneLdl {
   // on the SIMD targets, see there).
   HWY_NOINLINE void solve(D d, double* HWY_RESTRICT x) {
     if constexpr (kUnrolledSolve<N>) {
-      using DN = typename D::D;
-      constexpr std::size_t L1 = hwy::HWY_NAMESPACE::MaxLanes(DN());
-      for (std::size_t g = 0; g < L; g += L1) solve_unrolled(DN(), g, x);
+      for_each_native_vector(d, [&](auto dn, std::size_t g) { solve_unrolled(dn, g, x); });
     } else {
       hn::Vec<D> v[N];
       for (int i = 0; i < N; ++i) v[i] = hn::Load(d, x + i * L);
-      for (int k = 0; k < N; ++k)
-        for (int i = k + 1; i < N; ++i) v[i] = hn::NegMulAdd(hn::Load(d, at(i, k)), v[k], v[i]);
+      forward_substitution<N>(d, [&](int i, int k) { return at(i, k); }, v);
       for (int k = 0; k < N; ++k) v[k] = hn::Mul(v[k], hn::Load(d, inv_pivot + k * L));
       for (int k = N - 1; k >= 0; --k)
         for (int i = 0; i < k; ++i) v[i] = hn::NegMulAdd(hn::Load(d, at(k, i)), v[k], v[i]);
@@ -214,6 +225,8 @@ struct LaneLdl {
     }
   }
 
+  // Written out as LaneLu::solve_unrolled, and for the same reason (v stays in registers only
+  // when the loops are literal and unrolled in place, so they are not shared): no swaps, then D.
   template <class DN>
   HWY_INLINE void solve_unrolled(DN d, std::size_t g, double* HWY_RESTRICT x) {
     namespace hw = hwy::HWY_NAMESPACE;
