@@ -1,4 +1,5 @@
-// Compiles batch/null_vector-inl.hpp once per instruction set and exports the entry points.
+// Compiles batch/null_vector-inl.hpp once per instruction set and exports null_vector (pivoted LU,
+// with the gap); null_vector_seed.cpp exports the seed.
 #include "batch/targets.hpp"
 // clang-format off
 #undef HWY_TARGET_INCLUDE
@@ -9,6 +10,19 @@
 
 #include "batch/null_vector-inl.hpp"
 
+HWY_BEFORE_NAMESPACE();
+namespace bezinv::kernels::HWY_NAMESPACE {
+
+void null_vector_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z, double* defect,
+                       double* estimate, double* second) {
+  dispatch_size(n, [&](auto size) {
+    null_vector_fixed<decltype(size)::value, true>(count, stride, B, z, defect, estimate, second);
+  });
+}
+
+}  // namespace bezinv::kernels::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
 #if HWY_ONCE
 #include "batch/kernels.hpp"
 #include "batch/per_target.hpp"
@@ -17,10 +31,6 @@ namespace bezinv::kernels::batch {
 
 NullVectorKernel null_vector_kernel(std::int64_t target) {
   return for_target<NullVectorKernel>(target, BEZINV_PER_TARGET(null_vector_batch));
-}
-
-NullVectorSeedKernel null_vector_seed_kernel(std::int64_t target) {
-  return for_target<NullVectorSeedKernel>(target, BEZINV_PER_TARGET(null_vector_seed_batch));
 }
 
 }  // namespace bezinv::kernels::batch

@@ -1,0 +1,37 @@
+// Compiles batch/null_vector-inl.hpp once per instruction set and exports null_vector_seed (L D L^T
+// without pivoting, no gap); null_vector.cpp exports the pivoted kernel.
+#include "batch/targets.hpp"
+// clang-format off
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "batch/null_vector_seed.cpp"
+#include <hwy/foreach_target.h>  // re-includes this file once per target
+// clang-format on
+#include <hwy/highway.h>
+
+#include "batch/null_vector-inl.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace bezinv::kernels::HWY_NAMESPACE {
+
+void null_vector_seed_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z,
+                            double* defect, double* residual) {
+  dispatch_size(n, [&](auto size) {
+    null_vector_fixed<decltype(size)::value, false>(count, stride, B, z, defect, residual, nullptr);
+  });
+}
+
+}  // namespace bezinv::kernels::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+#include "batch/kernels.hpp"
+#include "batch/per_target.hpp"
+
+namespace bezinv::kernels::batch {
+
+NullVectorSeedKernel null_vector_seed_kernel(std::int64_t target) {
+  return for_target<NullVectorSeedKernel>(target, BEZINV_PER_TARGET(null_vector_seed_batch));
+}
+
+}  // namespace bezinv::kernels::batch
+#endif  // HWY_ONCE
