@@ -179,7 +179,8 @@ struct LaneLu {
 // least pivot before the last was 5e-12 and the 1st percentile 5e-7 to 2e-5, and Newton from every
 // one of the 81,920 seeds refined to the point's true parameter. Where the seed is poor anyway, it
 // costs time, not answers: the engine checks what it makes of the seed on its own (the isolation
-// certificate) and redoes every lane it cannot settle that way with null_vector, pivoted.
+// certificate), and every lane it cannot settle that way goes on to null_vector, pivoted, or to
+// the SVD.
 template <int N, class D>
 struct LaneLdl {
   static constexpr std::size_t L = hn::MaxLanes(D());

@@ -69,12 +69,12 @@ struct Implementation {
   // with B = L D L^T factored without pivoting (n^3 / 6 multiply-adds, no per-lane row swaps) and
   // without the iterations orthogonal to z (no sigma_{n-1} estimate, no second vector). Writes z
   // (unit 2-norm), residual[l] = ||B z|| / ||B||_F and defect[l] = how far the last iterates are
-  // from settling (null_vector's measure 1 alone). Unpivoted, z may be poor where a leading
-  // principal minor of B nearly vanishes (on the curve only the last one does, see
-  // null_vector-inl.hpp, LaneLdl), and a settled z is not proof of a simple null vector: callers
-  // check what they make of it by other means and redo with null_vector the lanes they cannot
-  // (the engine's isolation certificate). Reads only B's lower triangle. 2-4x faster than
-  // null_vector (bench/kernels_bench.cpp).
+  // from settling (null_vector's measure 1 alone). Reads only B's lower triangle. Unpivoted, z may
+  // be poor after a small pivot (measured on Bezout matrices of on-curve points: small pivots
+  // occur, yet every seed refined to the true parameter; null_vector-inl.hpp, LaneLdl), and a
+  // settled z is not proof of a simple null vector: callers check what they make of it by other
+  // means (the engine's isolation certificate) and send the lanes they cannot settle to
+  // null_vector or symmetric_svd. 2-4.5x faster than null_vector (bench/kernels_bench.cpp).
   void (*null_vector_seed)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                            double* defect, double* residual);
 
