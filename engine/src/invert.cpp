@@ -756,15 +756,16 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
   }
   clock.lap(&StageSeconds::form_b);
 
-  // 2-4 on the fast path (refinement on, degree >= 2): the null vector by LU and inverse
-  // iteration, read out, refined. A lane is answered here only when the SVD path could not answer
-  // it differently: the kernel's evidence says z is a converged, simple null vector (defect), there
-  // is no degree drop, and the refined point is on the segment within the tolerance. Where the
-  // sigma_{n-1} estimate does not clear kSecondNullDirectionRatio by the margin kFastPathGapRatio
-  // the SVD path would look for a second parameter: so does the fast path, in the span of z and
-  // the kernel's second vector, and a lane that finds one goes to the SVD path (double points are
-  // always answered there), as does a lane whose estimate is below kFastPathMinGap. Every other
-  // lane goes on to the SVD path below, which decides as before.
+  // 2-4 on the fast path (refinement on, degree >= 2): a null vector by inverse iteration, read
+  // out, refined, in two passes from degree 3 (below). With the gap (degree 2, and pass 2), a lane
+  // is answered here only when the SVD path could not answer it differently: the kernel's
+  // evidence says z is a converged, simple null vector (defect), there is no degree drop, and the
+  // refined point is on the segment within the tolerance. Where the sigma_{n-1} estimate does not
+  // clear kSecondNullDirectionRatio by the margin kFastPathGapRatio the SVD path would look for a
+  // second parameter: so does the fast path, in the span of z and the kernel's second vector, and
+  // a lane that finds one goes to the SVD path (double points are always answered there), as does
+  // a lane whose estimate is below kFastPathMinGap. Every other lane goes on to the SVD path
+  // below, which decides as before.
   // With refinement off the output is the paper's algebraic t, so it always comes from the SVD.
   //
   // Two passes (degree >= 3). The full kernel spends 8 of its 11 solves on the sigma_{n-1}
