@@ -35,16 +35,29 @@ Coefficients split(std::span<const double> c, double a, double b) {
 }
 
 // The Bernstein coefficients (degree p + q) of the product of f (degree p) and g (degree q):
-// B^p_i B^q_j = C(p,i) C(q,j) / C(p+q,i+j) B^{p+q}_{i+j}.
-void multiply_add(const double* f, int p, const double* g, int q, double sign, double* out) {
+// B^p_i B^q_j = C(p,i) C(q,j) / C(p+q,i+j) B^{p+q}_{i+j}. The weights C(p,i) C(q,j) / C(p+q,i+j)
+// are tabulated once per plan: computed per product, their binomial() calls and divisions were
+// most of make_plan (perf: binomial 56%), and each piece takes four products per coordinate.
+struct ProductWeights {
+  int p, q;
+  std::array<double, (kMaxDegree + 1) * (kMaxDegree + 1)> w;
+  ProductWeights(int p_, int q_) : p(p_), q(q_) {
+    for (int i = 0; i <= p; ++i)
+      for (int j = 0; j <= q; ++j) w[i * (q + 1) + j] = binomial(p, i) * binomial(q, j) / binomial(p + q, i + j);
+  }
+};
+
+void multiply_add(const double* f, const double* g, const ProductWeights& weights, double sign, double* out) {
+  const int p = weights.p, q = weights.q;
   for (int i = 0; i <= p; ++i)
-    for (int j = 0; j <= q; ++j)
-      out[i + j] += sign * binomial(p, i) * binomial(q, j) / binomial(p + q, i + j) * f[i] * g[j];
+    for (int j = 0; j <= q; ++j) out[i + j] += sign * weights.w[i * (q + 1) + j] * f[i] * g[j];
 }
 
-struct Piece {
-  bool positive = false;             // every weight of the piece > 0
-  Coefficients x{}, wx{}, y{}, wy{};  // numerators and denominators (wy = wx for a common one)
+// The four products coordinate() takes at degree n: F'W and FW' (degree 2n - 1), F''W and FW''.
+struct CoordinateProducts {
+  ProductWeights first_by_value, value_by_first, second_by_value, value_by_second;
+  explicit CoordinateProducts(int n)
+      : first_by_value(n - 1, n), value_by_first(n, n - 1), second_by_value(n - 2, n), value_by_second(n, n - 2) {}
 };
 
 // One coordinate f = F / W of a piece (Bernstein coefficients of F and W, degree n, W > 0):
@@ -54,16 +67,16 @@ struct Coordinate {
   double w_min = 0, w_max = 0;
   double bend = 0;  // |f''| <= (|G| W + 2 |W'| |H|) / W^3, G = H' = F''W - FW'' (degree 2n - 2)
 };
-Coordinate coordinate(const Coefficients& f, const Coefficients& w, int n) {
+Coordinate coordinate(const Coefficients& f, const Coefficients& w, int n, const CoordinateProducts& products) {
   Coordinate c;
   std::array<double, kMaxDegree> df{}, dw{}, ddf{}, ddw{};
   for (int i = 0; i < n; ++i) df[i] = n * (f[i + 1] - f[i]), dw[i] = n * (w[i + 1] - w[i]);
   for (int i = 0; i + 1 < n; ++i) ddf[i] = (n - 1) * (df[i + 1] - df[i]), ddw[i] = (n - 1) * (dw[i + 1] - dw[i]);
-  multiply_add(df.data(), n - 1, w.data(), n, 1.0, c.h.data());
-  multiply_add(f.data(), n, dw.data(), n - 1, -1.0, c.h.data());
+  multiply_add(df.data(), w.data(), products.first_by_value, 1.0, c.h.data());
+  multiply_add(f.data(), dw.data(), products.value_by_first, -1.0, c.h.data());
   std::array<double, 2 * kMaxDegree> g{};
-  multiply_add(ddf.data(), n - 2, w.data(), n, 1.0, g.data());
-  multiply_add(f.data(), n, ddw.data(), n - 2, -1.0, g.data());
+  multiply_add(ddf.data(), w.data(), products.second_by_value, 1.0, g.data());
+  multiply_add(f.data(), ddw.data(), products.value_by_second, -1.0, g.data());
   // Each polynomial is bounded by its largest Bernstein coefficient, W from below by its smallest.
   double h_max = 0, g_max = 0, dw_max = 0;
   for (int k = 0; k <= 2 * n - 1; ++k) h_max = std::max(h_max, std::abs(c.h[k]));
@@ -75,129 +88,195 @@ Coordinate coordinate(const Coefficients& f, const Coefficients& w, int n) {
   return c;
 }
 
+// What the bounds around a piece need of it: its ends, and the generators of its tangent cone.
+struct Piece {
+  bool positive = false;               // every weight of the piece > 0
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // P at its ends
+  // P' = (Hx / Wx^2, Hy / Wy^2) = (Hx, r Hy) / Wx^2 with r = Wx^2 / Wy^2 in [r_lo, r_hi] (r = 1 for
+  // a common denominator), and (Hx, r Hy) = sum_k B_k (hx_k, r hy_k): every tangent lies in the
+  // cone of the generators (hx_k, r hy_k), r = r_lo or r_hi (2 of them per k, 4n in all).
+  int generators = 0;
+  std::array<double, 8 * kMaxDegree> gx{}, gy{}, length{};
+  double wx_max = 0;     // for the speed: P' . c >= min_k generator_k . c / max Wx^2
+  double bend = 0;       // a bound of |P''| on the piece
+};
+
+// Piece j of K of the normalized curve: its box (written into the plan's) and what the bounds
+// around it need.
+Piece piece(InversionPlan& plan, int j, int K, const CoordinateProducts& products) {
+  const int n = plan.degree;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double a = static_cast<double>(j) / K, b = static_cast<double>(j + 1) / K;  // exact
+  const Coefficients x = split(plan.x_num, a, b), y = split(plan.y_num, a, b), wx = split(plan.x_den, a, b);
+  const Coefficients wy = plan.common_denominator ? wx : split(plan.y_den, a, b);
+  Piece p;
+  p.positive = true;
+  double x_min = inf, x_max = -inf, y_min = inf, y_max = -inf;
+  for (int i = 0; i <= n; ++i) {
+    // x = X / Wx is a convex combination of the x[i] / wx[i] (weights wx[i] B_i / Wx), and so is
+    // y of its own ratios: the box holds the piece for separate denominators too.
+    if (!(wx[i] > 0 && wy[i] > 0)) p.positive = false;
+    const double xi = x[i] / wx[i], yi = y[i] / wy[i];
+    x_min = std::min(x_min, xi); x_max = std::max(x_max, xi);
+    y_min = std::min(y_min, yi); y_max = std::max(y_max, yi);
+  }
+  // A piece with a weight that is not positive keeps the whole plane (isolation_pieces).
+  if (!p.positive || !std::isfinite(x_min + x_max + y_min + y_max)) {
+    p.positive = false;
+    return p;
+  }
+  // Room for the rounding of the split and the divisions (~n eps of the coordinates; 1e-12 is
+  // far above it and far below any tolerance a point would be judged by).
+  const double size = std::max({std::abs(x_min), std::abs(x_max), std::abs(y_min), std::abs(y_max)});
+  const double margin = 1e-12 * (1.0 + size);
+  double* const box = plan.isolation_boxes.data();  // x centres, x half-widths, y centres, y half-widths
+  box[j] = 0.5 * (x_min + x_max);
+  box[K + j] = 0.5 * (x_max - x_min) + margin;
+  box[2 * K + j] = 0.5 * (y_min + y_max);
+  box[3 * K + j] = 0.5 * (y_max - y_min) + margin;
+
+  p.x0 = x[0] / wx[0];
+  p.y0 = y[0] / wy[0];
+  p.x1 = x[n] / wx[n];
+  p.y1 = y[n] / wy[n];
+  const Coordinate fx = coordinate(x, wx, n, products), fy = coordinate(y, wy, n, products);
+  const double r_lo = plan.common_denominator ? 1.0 : (fx.w_min * fx.w_min) / (fy.w_max * fy.w_max);
+  const double r_hi = plan.common_denominator ? 1.0 : (fx.w_max * fx.w_max) / (fy.w_min * fy.w_min);
+  for (int k = 0; k <= 2 * n - 1; ++k)
+    for (double r : {r_lo, r_hi}) {
+      p.gx[p.generators] = fx.h[k];
+      p.gy[p.generators] = r * fy.h[k];
+      p.length[p.generators] = std::hypot(p.gx[p.generators], p.gy[p.generators]);
+      ++p.generators;
+    }
+  p.wx_max = fx.w_max;
+  p.bend = std::hypot(fx.bend, fy.bend);
+  return p;
+}
+
+// The bounds of piece j over N, the pieces first..last around it (isolation.hpp): cos(2 alpha) v
+// into isolation_monotone[j], and the distance below which the distance has one stationary point
+// on N into isolation_unique[j]; 0 where they do not apply.
+void bounds_around(InversionPlan& plan, int j, int K, const Piece* const* around, int count) {
+  for (int q = 0; q < count; ++q)
+    if (!around[q]->positive) return;
+  // c: the chord of N.
+  double cx = around[count - 1]->x1 - around[0]->x0, cy = around[count - 1]->y1 - around[0]->y0;
+  const double chord = std::hypot(cx, cy);
+  if (!(chord > 0)) return;
+  cx /= chord;
+  cy /= chord;
+  // speed and bend in the piece's own parameter s = K t - q: dP/ds = dP/dt / K.
+  double cos_alpha = 1.0, speed = std::numeric_limits<double>::infinity(), bend = 0.0;
+  for (int q = 0; q < count; ++q) {
+    const Piece& p = *around[q];
+    // P' . c is at least the generators' smallest component along c over the largest Wx^2 (when
+    // that is positive).
+    double along_min = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < p.generators; ++k) {
+      const double along = p.gx[k] * cx + p.gy[k] * cy;
+      along_min = std::min(along_min, along);
+      if (p.length[k] > 0) cos_alpha = std::min(cos_alpha, along / p.length[k]);  // 0 adds nothing to the cone
+    }
+    speed = std::min(speed, along_min / (p.wx_max * p.wx_max));
+    bend = std::max(bend, p.bend);
+  }
+  const double cos_2alpha = 2 * cos_alpha * cos_alpha - 1;
+  // Half of each: room for the rounding of all the above (relative errors ~n^2 eps). In t:
+  // dP/dt = K dP/ds, d2P/dt2 = K^2 d2P/ds2, so the ratio below is the same in s and in t.
+  if (cos_alpha > 0 && cos_2alpha > 0 && speed > 0 && std::isfinite(speed)) {
+    plan.isolation_monotone[j] = 0.5 * cos_2alpha * K * speed;
+    const double unique = 0.5 * speed * speed / ((1 + 1 / cos_2alpha) * bend);
+    if (std::isfinite(unique)) plan.isolation_unique[j] = unique;
+  }
+}
+
 }  // namespace
 
+int isolation_piece_count(int degree) {
+  // A curve of higher degree turns more, and a piece whose tangents turn by 45 degrees or more
+  // certifies nothing around it. Each on-curve point the certificate refuses pays for the pivoted
+  // kernel and the second-parameter walks (pass 2): with 32 pieces, 16% of the pipeline at degree
+  // 20 (perf). Refusals measured with `bezinv profile --points 300000` (16 random curves on
+  // perturbed arcs), K = 32 / 64 / 128 / 256:
+  //   degree 10: 0.77% / 0.10% / 0 / 0;   degree 12: 0.40% / 0.19% / 0.05% / 0
+  //   degree 15: 2.9% / 0.77% / 0.05% / 0;   degree 20: 2.8% / 1.5% / 0.86% / 0.40%
+  //   degree 24: 4.8% / 2.2% / 1.0% / 0.29%
+  // and up to degree 8, none at 32. The cost is make_plan's: about 1.5 ms at degree 20 with 256
+  // pieces against 0.35 ms with 32 (O(K n^2) for the pieces, O(K^2) for the distances of the boxes).
+  if (degree <= 9) return 32;
+  if (degree <= 14) return 128;
+  return kIsolationMaxPieces;
+}
+
 void isolation_pieces(InversionPlan& plan) {
+  plan.isolation_pieces = 0;
   plan.isolation_boxes.clear();
   plan.isolation_far.clear();
   plan.isolation_monotone.clear();
   plan.isolation_unique.clear();
   const int n = plan.degree;
   if (n < 2) return;
-  constexpr int K = kIsolationPieces;
-  std::vector<Piece> pieces(K);
+  const int K = isolation_piece_count(n);
+  plan.isolation_pieces = K;
   // x centres, x half-widths, y centres, y half-widths, K each (the distance from a point to a box
   // along x is then |x - centre| - half-width, or 0 inside). A piece with a weight that is not
   // positive gets the whole plane: never farther than any tolerance.
   const double inf = std::numeric_limits<double>::infinity();
   plan.isolation_boxes.assign(4 * K, 0.0);
-  double* const x_centre = plan.isolation_boxes.data();
-  double* const x_half = x_centre + K;
-  double* const y_centre = x_centre + 2 * K;
-  double* const y_half = x_centre + 3 * K;
-  std::fill_n(x_half, K, inf);
-  std::fill_n(y_half, K, inf);
+  std::fill_n(plan.isolation_boxes.data() + K, K, inf);
+  std::fill_n(plan.isolation_boxes.data() + 3 * K, K, inf);
+  plan.isolation_monotone.assign(K, 0.0);
+  plan.isolation_unique.assign(K, 0.0);
+
+  // The pieces in order, three at a time (pieces j-1, j, j+1 for the bounds around j), so that
+  // the plan's memory does not grow with K beyond its boxes and bounds.
+  const CoordinateProducts products(n);
+  std::array<Piece, 3> window;
+  auto at = [&](int q) -> Piece& { return window[q % 3]; };
+  at(0) = piece(plan, 0, K, products);
   for (int j = 0; j < K; ++j) {
-    Piece& piece = pieces[j];
-    const double a = static_cast<double>(j) / K, b = static_cast<double>(j + 1) / K;  // exact
-    piece.x = split(plan.x_num, a, b);
-    piece.y = split(plan.y_num, a, b);
-    piece.wx = split(plan.x_den, a, b);
-    piece.wy = plan.common_denominator ? piece.wx : split(plan.y_den, a, b);
-    piece.positive = true;
-    double x_min = inf, x_max = -inf, y_min = inf, y_max = -inf;
-    for (int i = 0; i <= n; ++i) {
-      // x = X / Wx is a convex combination of the x[i] / wx[i] (weights wx[i] B_i / Wx), and so is
-      // y of its own ratios: the box holds the piece for separate denominators too.
-      if (!(piece.wx[i] > 0 && piece.wy[i] > 0)) piece.positive = false;
-      const double x = piece.x[i] / piece.wx[i], y = piece.y[i] / piece.wy[i];
-      x_min = std::min(x_min, x); x_max = std::max(x_max, x);
-      y_min = std::min(y_min, y); y_max = std::max(y_max, y);
-    }
-    if (!piece.positive || !std::isfinite(x_min + x_max + y_min + y_max)) continue;
-    // Room for the rounding of the split and the divisions (~n eps of the coordinates; 1e-12 is
-    // far above it and far below any tolerance a point would be judged by).
-    const double size = std::max({std::abs(x_min), std::abs(x_max), std::abs(y_min), std::abs(y_max)});
-    const double margin = 1e-12 * (1.0 + size);
-    x_centre[j] = 0.5 * (x_min + x_max);
-    x_half[j] = 0.5 * (x_max - x_min) + margin;
-    y_centre[j] = 0.5 * (y_min + y_max);
-    y_half[j] = 0.5 * (y_max - y_min) + margin;
+    if (j + 1 < K) at(j + 1) = piece(plan, j + 1, K, products);
+    const int first = std::max(0, j - 1), last = std::min(K - 1, j + 1);
+    const Piece* around[3];
+    for (int q = first; q <= last; ++q) around[q - first] = &at(q);
+    bounds_around(plan, j, K, around, last - first + 1);
   }
 
   // Per piece j, the distance from its box to the nearest box not next to it: P(t) lies in the box
   // of t's piece, so no point of those pieces is nearer P0 than that less |P(t) - P0|. Most lanes
   // are certified by this one comparison; the others test P0 against the boxes one by one.
+  // (Squared, one square root per piece: K^2 calls of hypot were most of make_plan at K = 256.)
+  const double* const x_centre = plan.isolation_boxes.data();
+  const double* const x_half = x_centre + K;
+  const double* const y_centre = x_centre + 2 * K;
+  const double* const y_half = x_centre + 3 * K;
   plan.isolation_far.assign(K, inf);
-  for (int j = 0; j < K; ++j)
+  for (int j = 0; j < K; ++j) {
+    double nearest2 = inf;
     for (int q = 0; q < K; ++q) {
       if (q >= j - 1 && q <= j + 1) continue;
       double dx = std::abs(x_centre[j] - x_centre[q]) - x_half[j] - x_half[q];
       double dy = std::abs(y_centre[j] - y_centre[q]) - y_half[j] - y_half[q];
       dx = dx > 0 ? dx : 0.0;  // NaN (an infinite box) -> 0
       dy = dy > 0 ? dy : 0.0;
-      plan.isolation_far[j] = std::min(plan.isolation_far[j], std::hypot(dx, dy));
+      nearest2 = std::min(nearest2, dx * dx + dy * dy);
     }
-
-  // Per piece j, over N = pieces j-1..j+1: cos(2 alpha) v and the distance below which the
-  // distance has one stationary point on N (header), 0 where they do not apply.
-  plan.isolation_monotone.assign(K, 0.0);
-  plan.isolation_unique.assign(K, 0.0);
-  for (int j = 0; j < K; ++j) {
-    const int first = std::max(0, j - 1), last = std::min(K - 1, j + 1);
-    bool usable = true;
-    for (int q = first; q <= last; ++q) usable = usable && pieces[q].positive;
-    if (!usable) continue;
-    // c: the chord of N.
-    const Piece& p0 = pieces[first];
-    const Piece& p1 = pieces[last];
-    double cx = p1.x[n] / p1.wx[n] - p0.x[0] / p0.wx[0], cy = p1.y[n] / p1.wy[n] - p0.y[0] / p0.wy[0];
-    const double chord = std::hypot(cx, cy);
-    if (!(chord > 0)) continue;
-    cx /= chord;
-    cy /= chord;
-    // speed and bend in the piece's own parameter s = K t - q: dP/ds = dP/dt / K.
-    double cos_alpha = 1.0, speed = std::numeric_limits<double>::infinity(), bend = 0.0;
-    for (int q = first; q <= last; ++q) {
-      const Piece& p = pieces[q];
-      const Coordinate fx = coordinate(p.x, p.wx, n), fy = coordinate(p.y, p.wy, n);
-      // P' = (Hx / Wx^2, Hy / Wy^2) = (Hx, r Hy) / Wx^2 with r = Wx^2 / Wy^2 in [r_lo, r_hi] (r = 1
-      // for a common denominator), and (Hx, r Hy) = sum_k B_k (hx_k, r hy_k): every tangent lies in
-      // the cone of the generators (hx_k, r hy_k), r = r_lo or r_hi, and P' . c is at least their
-      // smallest component along c over the largest Wx^2 (when that is positive).
-      const double r_lo = plan.common_denominator ? 1.0 : (fx.w_min * fx.w_min) / (fy.w_max * fy.w_max);
-      const double r_hi = plan.common_denominator ? 1.0 : (fx.w_max * fx.w_max) / (fy.w_min * fy.w_min);
-      double along_min = std::numeric_limits<double>::infinity();
-      for (int k = 0; k <= 2 * n - 1; ++k)
-        for (double r : {r_lo, r_hi}) {
-          const double gx = fx.h[k], gy = r * fy.h[k];
-          const double along = gx * cx + gy * cy, length = std::hypot(gx, gy);
-          along_min = std::min(along_min, along);
-          if (length > 0) cos_alpha = std::min(cos_alpha, along / length);  // 0 adds nothing to the cone
-        }
-      speed = std::min(speed, along_min / (fx.w_max * fx.w_max));
-      bend = std::max(bend, std::hypot(fx.bend, fy.bend));
-    }
-    const double cos_2alpha = 2 * cos_alpha * cos_alpha - 1;
-    // Half of each: room for the rounding of all the above (relative errors ~n^2 eps). In t:
-    // dP/dt = K dP/ds, d2P/dt2 = K^2 d2P/ds2, so the ratio below is the same in s and in t.
-    if (cos_alpha > 0 && cos_2alpha > 0 && speed > 0 && std::isfinite(speed)) {
-      plan.isolation_monotone[j] = 0.5 * cos_2alpha * K * speed;
-      const double unique = 0.5 * speed * speed / ((1 + 1 / cos_2alpha) * bend);
-      if (std::isfinite(unique)) plan.isolation_unique[j] = unique;
-    }
+    plan.isolation_far[j] = std::sqrt(nearest2);
   }
 }
 
 namespace {
 // The piece [j/K, (j+1)/K] that holds t in [0, 1] (t = 1 in the last).
-int piece_of(double t) { return std::min(kIsolationPieces - 1, static_cast<int>(t * kIsolationPieces)); }
+int piece_of(const InversionPlan& plan, double t) {
+  return std::min(plan.isolation_pieces - 1, static_cast<int>(t * plan.isolation_pieces));
+}
 }  // namespace
 
 bool isolated(const InversionPlan& plan, double u0, double v0, double t, double distance, double tolerance) {
-  constexpr int K = kIsolationPieces;
+  const int K = plan.isolation_pieces;
   if (plan.isolation_monotone.empty() || !(t >= 0.0 && t <= 1.0)) return false;
-  const int j = piece_of(t);
+  const int j = piece_of(plan, t);
   // Around t: every stationary point of the distance on N lies within distance / monotone of t,
   // and below isolation_unique there is only one, t itself.
   if (!(distance < plan.isolation_monotone[j] * kDistinctParameterGap) && !(distance < plan.isolation_unique[j]))
@@ -210,7 +289,8 @@ bool isolated(const InversionPlan& plan, double u0, double v0, double t, double 
   const double* x_half = x_centre + K;
   const double* y_centre = x_centre + 2 * K;
   const double* y_half = x_centre + 3 * K;
-  std::array<double, K> distance2;
+  // All K distances first, then one test over them: the loop vectorizes.
+  std::array<double, kIsolationMaxPieces> distance2;
   for (int q = 0; q < K; ++q) {
     double dx = std::abs(u0 - x_centre[q]) - x_half[q], dy = std::abs(v0 - y_centre[q]) - y_half[q];
     dx = dx > 0 ? dx : 0.0;  // NaN (a NaN point) -> 0: inside every box, never certified
@@ -225,7 +305,7 @@ bool isolated(const InversionPlan& plan, double u0, double v0, double t, double 
 
 bool nearest_on_segment(const InversionPlan& plan, double u0, double v0, double t, double distance) {
   if (plan.isolation_unique.empty() || !(t >= 0.0 && t <= 1.0)) return false;
-  return distance < plan.isolation_unique[piece_of(t)] && isolated(plan, u0, v0, t, distance, distance);
+  return distance < plan.isolation_unique[piece_of(plan, t)] && isolated(plan, u0, v0, t, distance, distance);
 }
 
 }  // namespace bezinv::detail

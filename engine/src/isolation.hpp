@@ -8,7 +8,7 @@
 // pipeline (measured). This certificate answers the same question without walking, from data
 // computed once per curve, in one comparison for most lanes (one per piece for the rest):
 //
-//  1. Far from t. The curve is cut into kIsolationPieces pieces [j/K, (j+1)/K]. With positive
+//  1. Far from t. The curve is cut into K = plan.isolation_pieces pieces [j/K, (j+1)/K]. With positive
 //     weights each coordinate of a piece is a convex combination of its control values (x = X/Wx
 //     of the x[i] / wx[i], y of its own ratios, with separate denominators too), so the piece lies
 //     in their box. If the box of every piece not next to t's is farther than the tolerance from
@@ -46,7 +46,9 @@
 
 namespace bezinv::detail {
 
-inline constexpr int kIsolationPieces = 32;
+// K, the number of pieces: 32 up to degree 9, more above (isolation_piece_count says why).
+inline constexpr int kIsolationMaxPieces = 256;
+int isolation_piece_count(int degree);
 
 // Fills plan.isolation_boxes, isolation_far, isolation_monotone and isolation_unique from the
 // normalized curve (make_plan).

@@ -48,12 +48,13 @@ struct InversionPlan {
   // (x, y) pairs (engine/src/refine.hpp): computed once here instead of for every off-curve point.
   std::vector<double> nearest_samples;
 
-  // Isolation certificate (engine/src/isolation.hpp), for K = kIsolationPieces pieces of [0, 1]: a
+  // Isolation certificate (engine/src/isolation.hpp), for K = isolation_pieces pieces of [0, 1]: a
   // box holding each piece of the curve (K x centres, K x half-widths, then the same for y; the
   // whole plane where a weight is not positive), the distance from each box to the nearest box not
   // next to it, and per piece a bound that makes the curve monotone around it and the distance
   // from the curve below which a point has one nearest parameter there (0: none). Empty for
   // degree < 2.
+  int isolation_pieces = 0;
   std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique;
 
   // Power-basis leading coefficients of the four polynomials and their size bounds, for
