@@ -1,5 +1,6 @@
 // Compiles batch/null_vector-inl.hpp once per instruction set and exports null_vector_seed (L D L^T
-// without pivoting, no gap); null_vector.cpp exports the pivoted kernel.
+// without pivoting, no gap; at n = 3 the adjugate, batch/adjugate_null_vector-inl.hpp);
+// null_vector.cpp exports the pivoted kernel.
 #include "batch/targets.hpp"
 // clang-format off
 #undef HWY_TARGET_INCLUDE
@@ -8,6 +9,7 @@
 // clang-format on
 #include <hwy/highway.h>
 
+#include "batch/adjugate_null_vector-inl.hpp"
 #include "batch/null_vector-inl.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -15,6 +17,7 @@ namespace bezinv::kernels::HWY_NAMESPACE {
 
 void null_vector_seed_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                             double* defect, double* residual) {
+  if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, B, z, defect, residual);
   dispatch_size(n, [&](auto size) {
     null_vector_fixed<decltype(size)::value, false>(count, stride, B, z, defect, residual, nullptr);
   });
