@@ -271,17 +271,37 @@ namespace {
 int piece_of(const InversionPlan& plan, double t) {
   return std::min(plan.isolation_pieces - 1, static_cast<int>(t * plan.isolation_pieces));
 }
+
+// The margin on the tolerance of both tests: room for the rounding of the distances.
+double isolation_limit(double tolerance) { return tolerance * (1 + 1e-12); }
+
+// Around t (in piece j): every stationary point of the distance on N lies within
+// distance / monotone of t, and below isolation_unique there is only one, t itself.
+bool isolated_around(const InversionPlan& plan, int j, double distance) {
+  return distance < plan.isolation_monotone[j] * kDistinctParameterGap || distance < plan.isolation_unique[j];
+}
 }  // namespace
+
+void isolated_by_far_boxes(const InversionPlan& plan, const double* t, const double* distance, double tolerance,
+                           std::size_t count, std::uint8_t* certified) {
+  if (plan.isolation_monotone.empty()) {
+    std::fill_n(certified, count, std::uint8_t{0});
+    return;
+  }
+  const double limit = isolation_limit(tolerance);
+  for (std::size_t l = 0; l < count; ++l) {
+    const bool inside = t[l] >= 0.0 && t[l] <= 1.0;  // false for NaN
+    const int j = inside ? piece_of(plan, t[l]) : 0;
+    certified[l] = inside && isolated_around(plan, j, distance[l]) && plan.isolation_far[j] - distance[l] > limit;
+  }
+}
 
 bool isolated(const InversionPlan& plan, double u0, double v0, double t, double distance, double tolerance) {
   const int K = plan.isolation_pieces;
   if (plan.isolation_monotone.empty() || !(t >= 0.0 && t <= 1.0)) return false;
   const int j = piece_of(plan, t);
-  // Around t: every stationary point of the distance on N lies within distance / monotone of t,
-  // and below isolation_unique there is only one, t itself.
-  if (!(distance < plan.isolation_monotone[j] * kDistinctParameterGap) && !(distance < plan.isolation_unique[j]))
-    return false;
-  const double limit = tolerance * (1 + 1e-12);
+  if (!isolated_around(plan, j, distance)) return false;
+  const double limit = isolation_limit(tolerance);
   if (plan.isolation_far[j] - distance > limit) return true;
   // Otherwise P0 itself against every box not next to t's: all farther than the tolerance. (Box by
   // box, this is what took 8% of the pipeline at degree 8 before the comparison above, perf.)

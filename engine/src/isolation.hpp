@@ -42,6 +42,9 @@
 // that turns by 45 degrees or more, a point off the curve by more than 3. allows (about a quarter
 // of the radius of curvature, or less), or a box near P0 (a second branch passing close, which is
 // what the check is for).
+#include <cstddef>
+#include <cstdint>
+
 #include "bezinv/plan.hpp"
 
 namespace bezinv::detail {
@@ -58,6 +61,13 @@ void isolation_pieces(InversionPlan& plan);
 // refinement of the distance to (u0, v0) ends within `tolerance`; `distance` is |P(t) - (u0, v0)|,
 // all in normalized units. False whenever the certificate does not apply.
 bool isolated(const InversionPlan& plan, double u0, double v0, double t, double distance, double tolerance);
+
+// The first test of isolated() for `count` lanes at once, in a loop that vectorizes (the fast
+// path's common case): certified[l] = 1 where the distance to the boxes far from t[l] alone proves
+// isolated(plan, u0, v0, t[l], distance[l], tolerance), whatever the point; 0 where isolated()
+// must decide (it may still certify, testing the point against each box).
+void isolated_by_far_boxes(const InversionPlan& plan, const double* t, const double* distance, double tolerance,
+                           std::size_t count, std::uint8_t* certified);
 
 // True when P(t), at `distance` from (u0, v0), is the nearest point of the whole segment: the
 // certificate with the point's own distance for the tolerance, and the distance below

@@ -197,6 +197,61 @@ TEST(Isolation, NoWalkEndsWithinTheToleranceAwayFromACertifiedParameter) {
   EXPECT_GT(refused, 50);  // the loose tolerances and the loops must refuse some
 }
 
+// isolated_by_far_boxes, the first test of isolated() for a batch: where it certifies a lane,
+// isolated() does; on and off looping curves, with loose tolerances, NaN and t outside [0, 1] in
+// the batch. Most on-curve points of arcs at the default tolerance must pass the first test alone
+// (that is what the batched test is for), and the loops at loose tolerances must leave some to
+// isolated()'s box-by-box test.
+TEST(Isolation, TheBatchedFirstTestCertifiesOnlyWhatIsolatedCertifies) {
+  std::mt19937_64 rng(13);
+  int batched = 0, by_boxes = 0, refused = 0, arc_points = 0, arc_batched = 0;
+  for (int n : {2, 3, 5, 8, 10, 15, 20})
+    for (auto polygon : {datasets::ControlPolygon::unit_square, datasets::ControlPolygon::perturbed_arc})
+      for (CurveKind kind : kKinds) {
+        const InversionPlan plan = make_plan(datasets::random_curve(kind, n, rng, polygon));
+        for (double relative_tolerance : {1e-6, 1e-2}) {
+          const double tolerance = relative_tolerance * plan.diagonal / plan.scale;
+          constexpr std::size_t kLanes = 64;
+          std::array<double, kLanes> u, v, t, distance;
+          for (std::size_t l = 0; l < kLanes; ++l) {
+            const auto p = plan.normalized_point(datasets::uniform(rng, 0.0, 1.0));
+            const double off = l % 3 == 0 ? datasets::uniform(rng, 0.0, 2.0) * tolerance : 0.0;
+            u[l] = p[0] + off;
+            v[l] = p[1];
+            const detail::Refined own = detail::refine_parameter(plan, u[l], v[l], datasets::uniform(rng, 0.0, 1.0), true);
+            t[l] = own.t;
+            distance[l] = own.distance;
+          }
+          t[5] = std::nan("");
+          t[6] = 1.5;
+          t[7] = -0.25;
+          std::array<std::uint8_t, kLanes> certified;
+          detail::isolated_by_far_boxes(plan, t.data(), distance.data(), tolerance, kLanes, certified.data());
+          for (std::size_t l = 0; l < kLanes; ++l) {
+            const bool isolated = detail::isolated(plan, u[l], v[l], t[l], distance[l], tolerance);
+            if (certified[l]) {
+              EXPECT_TRUE(isolated) << "n " << n << " lane " << l << " t " << t[l];
+              ++batched;
+            } else {
+              ++(isolated ? by_boxes : refused);
+            }
+            if (polygon == datasets::ControlPolygon::perturbed_arc && relative_tolerance == 1e-6 && l % 3 != 0 &&
+                l >= 8 && distance[l] <= tolerance) {
+              ++arc_points;
+              arc_batched += certified[l];
+            }
+          }
+          for (std::size_t l : {5, 6, 7}) EXPECT_FALSE(certified[l]) << "t " << t[l];
+        }
+      }
+  RecordProperty("batched", batched);
+  RecordProperty("by_boxes", by_boxes);
+  RecordProperty("refused", refused);
+  EXPECT_GT(arc_points, 200);
+  EXPECT_GE(arc_batched, 0.95 * arc_points);
+  EXPECT_GT(refused, 100);
+}
+
 // The same promise for points off the curve (along the normal, either side, up to 0.9 of the
 // tolerance): there the certificate rests on isolation_unique, the distance below which the
 // distance function has one stationary point around t. Near a tight bend, on its inner side, a
