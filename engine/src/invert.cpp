@@ -774,7 +774,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
   // settles what the estimate is for: that P0 has no second parameter on the segment within the
   // tolerance (engine/src/isolation.hpp), so that the SVD path, whose double_point needs one, would
   // answer ok at the same t. So:
-  //   1. the seed kernel (null_vector_seed: L D L^T without pivoting, three inverse iterations, no
+  //   1. the seed kernel (null_vector_seed: L D L^T without pivoting, two inverse iterations, no
   //      gap) for every lane, read out and refined; a lane refined onto the segment that the
   //      certificate covers is answered here, with sigma_next = NaN (no gap decided it). How good
   //      its seed was does not matter: the answer is checked on its own.

@@ -4,7 +4,7 @@
 //
 // Why. adj(B) B = det(B) I, so for B of rank 2 every nonzero column of adj(B) spans the null
 // space, and for regular B, adj(B) = det(B) B^-1: multiplying by it is one step of inverse
-// iteration without a factorization or a division. Against the L D L^T seed and its three solves
+// iteration without a factorization or a division. Against the L D L^T seed and its solves
 // at this size: 267M against 171M matrices/s on AVX-512, 91M against 81M on AVX2
 // (BM_KernelNullVectorSeed/n:3); the whole pipeline at degree 3 1.14x (BM_Engine_refined/3, best
 // of 7 alternating runs).

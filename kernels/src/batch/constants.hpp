@@ -20,6 +20,10 @@ inline constexpr int kJacobiMaxSweeps = 15;
 // eps ||B||, one iteration already damps the other directions by sigma_n / sigma_{n-1}; the next
 // two are there to *measure* convergence (the defect).
 inline constexpr int kInverseIterations = 3;
+// The seed (null_vector_seed) measures its settling over its last step alone, so two solves do:
+// nothing trusts the seed (its caller checks what it refines to by other means), and the settling
+// measure only spares the refinement lanes whose z has not converged.
+inline constexpr int kSeedInverseIterations = 2;
 // Inverse iterations orthogonal to the null vector, estimating 1 / sigma_{n-1} (the defect, and the
 // engine's gate for answering without an SVD). They converge at the rate sigma_{n-1}/sigma_{n-2}:
 // with 2 the estimate of sigma_{n-1} was up to 61x too high on the Bezout matrix of a degree-14

@@ -65,11 +65,12 @@ struct Implementation {
   void (*null_vector)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                       double* defect, double* estimate, double* second);
 
-  // A cheaper null vector, for a seed: the same three inverse iterations from (1, ..., 1), but
-  // with B = L D L^T factored without pivoting (n^3 / 6 multiply-adds, no per-lane row swaps) and
-  // without the iterations orthogonal to z (no sigma_{n-1} estimate, no second vector). Writes z
-  // (unit 2-norm), residual[l] = ||B z|| / ||B||_F and defect[l] = how far the last iterates are
-  // from settling (null_vector's measure 1 alone). Reads only B's lower triangle. Unpivoted, z may
+  // A cheaper null vector, for a seed: inverse iteration from (1, ..., 1), but two solves instead
+  // of three, with B = L D L^T factored without pivoting (n^3 / 6 multiply-adds, no per-lane row
+  // swaps) and without the iterations orthogonal to z (no sigma_{n-1} estimate, no second
+  // vector). Writes z (unit 2-norm), residual[l] = ||B z|| / ||B||_F and defect[l] = the chord
+  // between the two iterates (null_vector's measure 1, over one step). Reads only B's lower
+  // triangle. Unpivoted, z may
   // be poor after a small pivot (measured on Bezout matrices of on-curve points: small pivots
   // occur, yet every seed refined to the true parameter; null_vector-inl.hpp, LaneLdl), and a
   // settled z is not proof of a simple null vector: callers check what they make of it by other
