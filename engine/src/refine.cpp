@@ -95,9 +95,10 @@ Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double
     if (!std::isfinite(d)) return {t, d};
     const double g1 = ex * j.dx + ey * j.dy;                          // f(t)
     const double speed2 = j.dx * j.dx + j.dy * j.dy;
-    double g2 = speed2 + ex * j.ddx + ey * j.ddy;                     // f'(t)
+    const double slope = speed2 + ex * j.ddx + ey * j.ddy;            // f'(t)
     // Where the distance is locally concave (far from the curve, inside the evolute) Newton would
     // head for a maximum; Gauss-Newton (f' ~ |P'|^2) still descends.
+    double g2 = slope;
     if (!(g2 > 0)) g2 = speed2;
     if (!(g2 > 0) || !std::isfinite(g1)) break;
     double step = std::clamp(-g1 / g2, -kNewtonMaxStep, kNewtonMaxStep);
@@ -105,12 +106,18 @@ Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double
       // Converging: off the curve the distance is flat to second order at its minimum, so
       // comparing distances cannot resolve t below ~sqrt(eps); f(t) = 0 can. A step this small
       // cannot leave the basin, so take it as Newton gives it.
-      // Converged when the step moves t by a few ulps: d, measured at the t before it, is then
-      // |P(t) - P0| to rounding (it differs by at most |P'| 4 eps), and measuring it again at the
-      // new t would cost a third of the refinement of an on-curve point.
       double next = t + step;
       if (stay_on_segment) next = std::clamp(next, 0.0, 1.0);
       const double moved = std::abs(next - t);
+      // The last step (kNewtonFinalStep says why), not cut short by the clamp: the distance at the
+      // new t by the first-order update of the one at hand.
+      if (moved <= kNewtonFinalStep && next == t + step && slope >= 0.5 * speed2) {
+        const double s = next - t;
+        return {next, length(ex + j.dx * s, ey + j.dy * s)};
+      }
+      // Converged when the step moves t by a few ulps: d, measured at the t before it, is then
+      // |P(t) - P0| to rounding (it differs by at most |P'| 4 eps), and measuring it again at the
+      // new t would cost a third of the refinement of an on-curve point.
       t = next;
       if (moved <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) return {t, d};
       d_current = false;

@@ -8,7 +8,7 @@ namespace bezinv::detail {
 
 // refine_parameter's safeguards, for the kernels' lane-batched copy of it (rational_newton).
 inline constexpr kernels::NewtonSettings kNewtonSettings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep,
-                                                         kNewtonMaxHalvings};
+                                                         kNewtonMaxHalvings, kNewtonFinalStep};
 
 // The normalized curve as the kernels take it.
 inline kernels::RationalCurve kernel_curve(const InversionPlan& plan) {

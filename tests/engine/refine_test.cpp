@@ -23,7 +23,8 @@ namespace {
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 TEST(Refine, KernelGivesTheScalarRefinementsBits) {
-  const kernels::NewtonSettings settings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep, kNewtonMaxHalvings};
+  const kernels::NewtonSettings settings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep, kNewtonMaxHalvings,
+                                         kNewtonFinalStep};
   for (const kernels::Implementation* implementation : kernels::available_implementations()) {
     std::mt19937_64 rng(42);
     std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1.0, 1.0);

@@ -21,7 +21,7 @@ using test_support::sci;
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 // The engine's settings (engine/include/bezinv/tolerances.hpp).
-constexpr NewtonSettings kSettings{60, 0.125, 1e-6, 40};
+constexpr NewtonSettings kSettings{60, 0.125, 1e-6, 40, 1e-12};
 
 // A random rational Bezier curve: control points in [-1, 1]^2, weights in [0.5, 2], one denominator.
 struct TestCurve {

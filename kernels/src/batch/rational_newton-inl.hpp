@@ -134,9 +134,11 @@ HWY_INLINE hn::Vec<D> point_distance(D d, const RationalCurve& curve, hn::Vec<D>
 // exactly the scalar code's sequence of steps (the masks only say which lanes are still at which
 // point of it):
 //   iteration: jet at t; d = |P(t) - P0|; Newton step -f/f' (Gauss-Newton where f' <= 0), capped
-//   at max_step; a step of at most trusted_step is taken as it is (converged, with the distance
-//   measured before it, when it moves t by at most 4 eps max(1, |t|)); a larger one is halved until the distance does not increase (at most
-//   max_halvings times; if none is found, or it does not move t, the iteration stops).
+//   at max_step; a step of at most trusted_step is taken as it is (the last, with the distance by
+//   the first-order update |P - P0 + P' s|, when it moves t by at most final_step, unclamped,
+//   where f' >= |P'|^2 / 2; else converged, with the distance measured before it, when it moves t
+//   by at most 4 eps max(1, |t|)); a larger one is halved until the distance does not increase (at
+//   most max_halvings times; if none is found, or it does not move t, the iteration stops).
 template <int N, class D>
 HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const NewtonSettings& settings,
                                         std::size_t first, std::size_t lanes, const double* HWY_RESTRICT u_in,
@@ -155,6 +157,7 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
   const V u = load(u_in, 0.0), v = load(v_in, 0.0), t0 = load(t_inout, std::numeric_limits<double>::quiet_NaN());
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
   const V trusted = hn::Set(d, settings.trusted_step), max_step = hn::Set(d, settings.max_step);
+  const V final_step = hn::Set(d, settings.final_step);
   const V four_eps = hn::Set(d, 4 * std::numeric_limits<double>::epsilon());
   auto converged = [&](V moved, V t) { return hn::Le(moved, hn::Mul(four_eps, hn::Max(one, hn::Abs(t)))); };
 
@@ -196,19 +199,29 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
 
     const V g1 = hn::Add(hn::Mul(ex, dx), hn::Mul(ey, dy));
     const V speed2 = hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy));
-    V g2 = hn::Add(hn::Add(speed2, hn::Mul(ex, ddx)), hn::Mul(ey, ddy));
-    g2 = hn::IfThenElse(hn::Gt(g2, zero), g2, speed2);  // Gauss-Newton where the distance is concave
+    const V slope = hn::Add(hn::Add(speed2, hn::Mul(ex, ddx)), hn::Mul(ey, ddy));
+    const V g2 = hn::IfThenElse(hn::Gt(slope, zero), slope, speed2);  // Gauss-Newton where the distance is concave
     finish(hn::And(active, hn::Not(hn::And(hn::Gt(g2, zero), hn::IsFinite(g1)))), dist);
     V step = hn::Min(hn::Max(hn::Div(hn::Neg(g1), g2), hn::Neg(max_step)), max_step);
 
     // Small steps: taken as Newton gives them.
     const M small = hn::And(active, hn::Le(hn::Abs(step), trusted));
     {
-      const V next = hn::Min(hn::Max(hn::Add(t, step), zero), one);
+      const V unclamped = hn::Add(t, step);
+      const V next = hn::Min(hn::Max(unclamped, zero), one);
       const V moved = hn::Abs(hn::Sub(next, t));
+      // The last step (settings.final_step), not cut short by the clamp: the distance at the new
+      // t by the first-order update; given back where the scalar code would take it with hypot.
+      const V s = hn::Sub(next, t);
+      const M last = hn::And(small, hn::And(hn::And(hn::Le(moved, final_step), hn::Eq(next, unclamped)),
+                                            hn::Ge(slope, hn::Mul(half, speed2))));
+      M last_plain;
+      const V updated = plain_length(hn::Add(ex, hn::Mul(dx, s)), hn::Add(ey, hn::Mul(dy, s)), last_plain);
       t = hn::IfThenElse(small, next, t);
+      give_back(hn::AndNot(last_plain, last));
+      finish(hn::And(last, last_plain), updated);
       // Converged: the distance at the t before this step (refine.cpp says why).
-      finish(hn::And(small, converged(moved, t)), dist);
+      finish(hn::And(hn::AndNot(last, small), converged(moved, t)), dist);
       current = hn::AndNot(small, current);
     }
 

@@ -34,6 +34,7 @@ struct NewtonSettings {
   double max_step;      // largest step in t of one iteration
   double trusted_step;  // steps up to this are taken without the descent test
   int max_halvings;     // of a larger step, looking for descent
+  double final_step;    // a step up to this, where f' >= |P'|^2 / 2, is the last (see rational_newton)
 };
 
 // One instruction set's kernels. All function pointers are non-null.
@@ -88,9 +89,11 @@ struct Implementation {
   // multiply-add, so every implementation gives the scalar code's bits. Steps of
   // f(t) = (P(t) - P0) . P'(t), with f' = |P'|^2 + (P - P0) . P'' (|P'|^2 where that is not
   // positive), capped at settings.max_step and clamped to [0, 1]; a step above
-  // settings.trusted_step is halved until |P(t) - P0| does not increase. A settled lane gets its
-  // t and distance[l] = |P(t) - P0| (measured before the last step where that moved t by a few
-  // ulps). A lane the kernel does not settle (start not in [0, 1], or a distance that is not
+  // settings.trusted_step is halved until |P(t) - P0| does not increase; a step of at most
+  // settings.final_step, not cut by the clamp, where f' >= |P'|^2 / 2, is the last. A settled lane
+  // gets its t and distance[l] = |P(t) - P0| (after a last step, by the first-order update
+  // |P - P0 + P' s| of the distance before it; else measured before the last step where that
+  // moved t by a few ulps). A lane the kernel does not settle (start not in [0, 1], or a distance that is not
   // finite or that the scalar code would compute with std::hypot) keeps its t and gets
   // distance[l] = NaN: the caller runs the scalar code for it. Arrays have `count` entries.
   void (*rational_newton)(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
