@@ -76,14 +76,16 @@ inline constexpr double kNewtonMaxStep = 0.125;
 // Below this step size Newton is in its quadratic region and its steps are taken without the
 // descent test (which cannot resolve t finer than ~sqrt(eps) when the point is off the curve).
 inline constexpr double kNewtonTrustedStep = 1e-6;
-// A step this small is the last. Newton's error after a step s is about (f''/2f') s^2; with
-// f' >= |P'|^2 / 2 (checked: the distance is far from concave there), f''/2f' is at most
-// 3|P''|/|P'| + |P - P0| |P'''| / |P'|^2, below 1e4 on any curve a normalized plan is likely to hold,
-// so the new t is within 1e4 * 1e-24 = 1e-20 of the root, far below its ulp. Its distance is
-// then the first-order update |(P(t) - P0) + P'(t) s| of the one at hand, exact to
-// s^2 |P''| / 2 <= 1e-22 |P''| besides the rounding a direct evaluation has too. On-curve seeds
-// are within about 1e-14 of their root, so this takes one jet per point where the step rule
-// alone (a step of a few ulps) took two for most of them.
+// A step this small is the last. Newton's error after a step s is about C s^2, C = f''/2f'; with
+// f' >= |P'|^2 / 2 (checked: the distance is far from concave there), C is at most
+// 3|P''|/|P'| + |P - P0| |P'''| / |P'|^2, so the new t is within C 1e-24 of the root: below its
+// ulp unless C > 1e7, i.e. unless the curve all but stops (|P'| < 1e-7 |P''| on a normalized
+// curve), where t is ill-determined anyway (the rounding of P0 alone moves it by eps / |P'|). Its
+// distance is then the first-order update |(P(t) - P0) + P'(t) s| of the one at hand, exact to
+// s^2 |P''| / 2 <= 1e-24 |P''| besides the rounding a direct evaluation has too. On-curve seeds
+// are within about 1e-14 of their root, so this takes one jet per point where the step rule alone
+// (a step of a few ulps) took two for most of them (tests/kernels/rational_newton_test.cpp and
+// the property tests' accuracy model hold with it as before).
 inline constexpr double kNewtonFinalStep = 1e-12;
 // A larger step is halved at most this many times looking for a point no farther from P0.
 inline constexpr int kNewtonMaxHalvings = 40;
