@@ -119,15 +119,12 @@ int run_invert(const InvertArguments& arguments) {
 
   const std::vector<bezinv::Curve> curves = bezinv::read_curves_json(arguments.curves_path);
   std::vector<bezinv::InversionPlan> plans;
-  plans.reserve(curves.size());
-  for (std::size_t i = 0; i < curves.size(); ++i) {
-    try {
-      plans.push_back(bezinv::make_plan(curves[i]));
-    } catch (const bezinv::CurveError& e) {
-      // read_curves_json already validated the curve; name it anyway should the plan refuse it.
-      throw bezinv::InputError(arguments.curves_path + ": curves[" + std::to_string(i) + "] (id \"" + curves[i].id +
-                               "\"): " + e.what());
-    }
+  try {
+    plans = bezinv::make_plans(curves, arguments.threads);
+  } catch (const bezinv::PlansError& e) {
+    // read_curves_json already validated the curve; name it anyway should the plan refuse it.
+    throw bezinv::InputError(arguments.curves_path + ": curves[" + std::to_string(e.index) + "] (id \"" +
+                             curves[e.index].id + "\"): " + e.what());
   }
 
   bezinv::InvertOptions options;

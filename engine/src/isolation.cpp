@@ -15,23 +15,24 @@ namespace {
 
 using Coefficients = std::array<double, kMaxDegree + 1>;
 
-// The Bernstein coefficients of c (degree n) on [a, b] (as a curve of its own on [0, 1]): de
-// Casteljau at a keeps the right part, then at (b - a) / (1 - a) the left part of that.
-Coefficients split(std::span<const double> c, double a, double b) {
+// The Bernstein coefficients of c (degree n) on [a, b] (as a curve of its own on [0, 1]) into
+// piece[0..n]: de Casteljau at a keeps the right part, then at (b - a) / (1 - a) the left part of
+// that. (Only the n + 1 entries are touched: make_plan runs this 4 K times, and clearing
+// kMaxDegree-sized arrays each time was a sixth of make_plan at degree 3.)
+void split(std::span<const double> c, double a, double b, Coefficients& piece) {
   const int n = static_cast<int>(c.size()) - 1;
-  Coefficients f{}, right{}, piece{};
+  Coefficients f, right;
   std::copy(c.begin(), c.end(), f.begin());
   for (int k = 0; k <= n; ++k) {  // after k rounds, f[n - k] is the right part's coefficient n - k
     right[n - k] = f[n - k];
     for (int i = 0; i < n - k; ++i) f[i] = (1 - a) * f[i] + a * f[i + 1];
   }
   const double s = a < 1 ? (b - a) / (1 - a) : 1.0;
-  f = right;
+  std::copy_n(right.begin(), n + 1, f.begin());
   for (int k = 0; k <= n; ++k) {  // after k rounds, f[0] is the left part's coefficient k
     piece[k] = f[0];
     for (int i = 0; i < n - k; ++i) f[i] = (1 - s) * f[i] + s * f[i + 1];
   }
-  return piece;
 }
 
 // The Bernstein coefficients (degree p + q) of the product of f (degree p) and g (degree q):
@@ -62,19 +63,22 @@ struct CoordinateProducts {
 
 // One coordinate f = F / W of a piece (Bernstein coefficients of F and W, degree n, W > 0):
 // the coefficients of H = F'W - FW' (degree 2n - 1) and the bounds that |f''| needs.
+// (Sized for kMaxDegree, filled to the degree's: 2n coefficients of H.)
 struct Coordinate {
-  std::array<double, 2 * kMaxDegree> h{};
-  double w_min = 0, w_max = 0;
-  double bend = 0;  // |f''| <= (|G| W + 2 |W'| |H|) / W^3, G = H' = F''W - FW'' (degree 2n - 2)
+  std::array<double, 2 * kMaxDegree> h;
+  double w_min, w_max;
+  double bend;  // |f''| <= (|G| W + 2 |W'| |H|) / W^3, G = H' = F''W - FW'' (degree 2n - 2)
 };
 Coordinate coordinate(const Coefficients& f, const Coefficients& w, int n, const CoordinateProducts& products) {
   Coordinate c;
-  std::array<double, kMaxDegree> df{}, dw{}, ddf{}, ddw{};
+  std::array<double, kMaxDegree> df, dw, ddf, ddw;
   for (int i = 0; i < n; ++i) df[i] = n * (f[i + 1] - f[i]), dw[i] = n * (w[i + 1] - w[i]);
   for (int i = 0; i + 1 < n; ++i) ddf[i] = (n - 1) * (df[i + 1] - df[i]), ddw[i] = (n - 1) * (dw[i + 1] - dw[i]);
+  std::fill_n(c.h.begin(), 2 * n, 0.0);
   multiply_add(df.data(), w.data(), products.first_by_value, 1.0, c.h.data());
   multiply_add(f.data(), dw.data(), products.value_by_first, -1.0, c.h.data());
-  std::array<double, 2 * kMaxDegree> g{};
+  std::array<double, 2 * kMaxDegree> g;
+  std::fill_n(g.begin(), 2 * n - 1, 0.0);
   multiply_add(ddf.data(), w.data(), products.second_by_value, 1.0, g.data());
   multiply_add(f.data(), ddw.data(), products.value_by_second, -1.0, g.data());
   // Each polynomial is bounded by its largest Bernstein coefficient, W from below by its smallest.
@@ -89,28 +93,35 @@ Coordinate coordinate(const Coefficients& f, const Coefficients& w, int n, const
 }
 
 // What the bounds around a piece need of it: its ends, and the generators of its tangent cone.
+// (Filled in place by piece(), to the degree's size: make_plan keeps three.)
 struct Piece {
-  bool positive = false;               // every weight of the piece > 0
-  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // P at its ends
+  bool positive;               // every weight of the piece > 0
+  double x0, y0, x1, y1;       // P at its ends
   // P' = (Hx / Wx^2, Hy / Wy^2) = (Hx, r Hy) / Wx^2 with r = Wx^2 / Wy^2 in [r_lo, r_hi] (r = 1 for
   // a common denominator), and (Hx, r Hy) = sum_k B_k (hx_k, r hy_k): every tangent lies in the
   // cone of the generators (hx_k, r hy_k), r = r_lo or r_hi (2 of them per k, 4n in all).
-  int generators = 0;
-  std::array<double, 8 * kMaxDegree> gx{}, gy{}, length{};
-  double wx_max = 0;     // for the speed: P' . c >= min_k generator_k . c / max Wx^2
-  double bend = 0;       // a bound of |P''| on the piece
+  int generators;
+  std::array<double, 8 * kMaxDegree> gx, gy, length;
+  double wx_max;     // for the speed: P' . c >= min_k generator_k . c / max Wx^2
+  double bend;       // a bound of |P''| on the piece
 };
 
-// Piece j of K of the normalized curve: its box (written into the plan's) and what the bounds
-// around it need.
-Piece piece(InversionPlan& plan, int j, int K, const CoordinateProducts& products) {
+// Piece j of K of the normalized curve into p: its box (written into the plan's) and what the
+// bounds around it need.
+void piece(InversionPlan& plan, int j, int K, const CoordinateProducts& products, Piece& p) {
   const int n = plan.degree;
   const double inf = std::numeric_limits<double>::infinity();
   const double a = static_cast<double>(j) / K, b = static_cast<double>(j + 1) / K;  // exact
-  const Coefficients x = split(plan.x_num, a, b), y = split(plan.y_num, a, b), wx = split(plan.x_den, a, b);
-  const Coefficients wy = plan.common_denominator ? wx : split(plan.y_den, a, b);
-  Piece p;
+  Coefficients x, y, wx, wy;
+  split(plan.x_num, a, b, x);
+  split(plan.y_num, a, b, y);
+  split(plan.x_den, a, b, wx);
+  if (plan.common_denominator)
+    wy = wx;
+  else
+    split(plan.y_den, a, b, wy);
   p.positive = true;
+  p.generators = 0;
   double x_min = inf, x_max = -inf, y_min = inf, y_max = -inf;
   for (int i = 0; i <= n; ++i) {
     // x = X / Wx is a convex combination of the x[i] / wx[i] (weights wx[i] B_i / Wx), and so is
@@ -123,7 +134,7 @@ Piece piece(InversionPlan& plan, int j, int K, const CoordinateProducts& product
   // A piece with a weight that is not positive keeps the whole plane (isolation_pieces).
   if (!p.positive || !std::isfinite(x_min + x_max + y_min + y_max)) {
     p.positive = false;
-    return p;
+    return;
   }
   // Room for the rounding of the split and the divisions (~n eps of the coordinates; 1e-12 is
   // far above it and far below any tolerance a point would be judged by).
@@ -146,12 +157,13 @@ Piece piece(InversionPlan& plan, int j, int K, const CoordinateProducts& product
     for (double r : {r_lo, r_hi}) {
       p.gx[p.generators] = fx.h[k];
       p.gy[p.generators] = r * fy.h[k];
-      p.length[p.generators] = std::hypot(p.gx[p.generators], p.gy[p.generators]);
-      ++p.generators;
+      // (Not hypot: 2n calls per piece were a tenth of make_plan at degree 3; the generators of a
+      // normalized curve are far from overflow, and the bounds keep a factor 2 for rounding.)
+      const double gx = p.gx[p.generators], gy = p.gy[p.generators];
+      p.length[p.generators++] = std::sqrt(gx * gx + gy * gy);
     }
   p.wx_max = fx.w_max;
   p.bend = std::hypot(fx.bend, fy.bend);
-  return p;
 }
 
 // The bounds of piece j over N, the pieces first..last around it (isolation.hpp): cos(2 alpha) v
@@ -234,9 +246,9 @@ void isolation_pieces(InversionPlan& plan) {
   const CoordinateProducts products(n);
   std::array<Piece, 3> window;
   auto at = [&](int q) -> Piece& { return window[q % 3]; };
-  at(0) = piece(plan, 0, K, products);
+  piece(plan, 0, K, products, at(0));
   for (int j = 0; j < K; ++j) {
-    if (j + 1 < K) at(j + 1) = piece(plan, j + 1, K, products);
+    if (j + 1 < K) piece(plan, j + 1, K, products, at(j + 1));
     const int first = std::max(0, j - 1), last = std::min(K - 1, j + 1);
     const Piece* around[3];
     for (int q = first; q <= last; ++q) around[q - first] = &at(q);

@@ -1,10 +1,16 @@
 #include "bezinv/plan.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numbers>
+#include <optional>
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/bezout.hpp"
@@ -214,6 +220,27 @@ InversionPlan make_plan(const Curve& curve) {
     }
   }
   return plan;
+}
+
+std::vector<InversionPlan> make_plans(std::span<const Curve> curves, int threads) {
+  std::vector<InversionPlan> plans(curves.size());
+  std::mutex mutex;
+  std::optional<PlansError> first_error;  // of the lowest index, whichever thread meets it first
+  tbb::task_arena arena(threads > 0 ? threads : int{tbb::task_arena::automatic});
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, curves.size()), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        try {
+          plans[i] = make_plan(curves[i]);
+        } catch (const CurveError& e) {
+          const std::lock_guard<std::mutex> lock(mutex);
+          if (!first_error || i < first_error->index) first_error.emplace(i, e);
+        }
+      }
+    });
+  });
+  if (first_error) throw *first_error;
+  return plans;
 }
 
 }  // namespace bezinv

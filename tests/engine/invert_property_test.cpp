@@ -413,32 +413,39 @@ TEST(InvertProperty, BatchedEqualsSinglePointBitForBit) {
       all_t.push_back(i < points.size() ? points[i].t : PointResult::nan);
     }
   }
-  // The many-curve overload: interleaved rows, and rows the I/O layer rejected (curve_of < 0) are
-  // left exactly as the caller set them.
+  // The many-curve overload: interleaved rows (runs of one or two, inverted in parallel with each
+  // other), then the rows grouped by curve behind one run long enough for its batches to run in
+  // parallel; rows the I/O layer rejected (curve_of < 0) are left exactly as the caller set them.
   std::mt19937_64 shuffle(99);
-  std::vector<std::size_t> order(all_points.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::shuffle(order.begin(), order.end(), shuffle);
-  std::vector<int> curves(order.size());
-  std::vector<Point> points(order.size());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    curves[i] = i % 97 == 0 ? -1 : curve_of[order[i]];
-    points[i] = all_points[order[i]];
-  }
+  std::vector<std::size_t> interleaved(all_points.size()), grouped;
+  for (std::size_t i = 0; i < interleaved.size(); ++i) interleaved[i] = i;
+  std::shuffle(interleaved.begin(), interleaved.end(), shuffle);
+  for (int copy = 0; grouped.size() < 1000; ++copy)  // the first case's rows, again and again
+    for (std::size_t i = 0; i < all_points.size() && curve_of[i] == 0; ++i) grouped.push_back(i);
+  for (std::size_t i = 0; i < all_points.size(); ++i) grouped.push_back(i);
   PointResult untouched;
   untouched.status = Status::invalid_input;
   untouched.reason = "set by the caller";
-  for (int threads : {1, 2}) {
-    std::vector<PointResult> results(points.size(), untouched);
-    invert(plans, curves, points, results, {.threads = threads});
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const PointResult expected = curves[i] < 0 ? untouched : invert_point(plans[curves[i]], points[i]);
-      EXPECT_TRUE(identical(results[i], expected))
-          << (curves[i] < 0 ? std::string("rejected row") : cases[curves[i]]->name) << ", threads " << threads
-          << ", row " << i << " t_true " << all_t[order[i]];
+  for (const std::vector<std::size_t>* order : {&interleaved, &grouped}) {
+    std::vector<int> curves(order->size());
+    std::vector<Point> points(order->size());
+    for (std::size_t i = 0; i < order->size(); ++i) {
+      const bool rejected = i % 97 == 0 && (order == &interleaved || i > grouped.size() / 2);  // not in the long run
+      curves[i] = rejected ? -1 : curve_of[(*order)[i]];
+      points[i] = all_points[(*order)[i]];
     }
+    for (int threads : {1, 2}) {
+      std::vector<PointResult> results(points.size(), untouched);
+      invert(plans, curves, points, results, {.threads = threads});
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const PointResult expected = curves[i] < 0 ? untouched : invert_point(plans[curves[i]], points[i]);
+        EXPECT_TRUE(identical(results[i], expected))
+            << (curves[i] < 0 ? std::string("rejected row") : cases[curves[i]]->name) << ", threads " << threads
+            << ", row " << i << " t_true " << all_t[(*order)[i]];
+      }
+    }
+    EXPECT_GT(points.size(), 1000u);
   }
-  EXPECT_GT(points.size(), 1000u);
 }
 
 // ---- the fast path (LU null vector) against the SVD path -------------------------------------------

@@ -1,0 +1,79 @@
+// engine/src/plan.cpp: make_plans, the plans of many curves in parallel, against make_plan one at
+// a time (the same numbers, in order) and its error for curves that fail validation.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "bezinv/datasets/random_curve.hpp"
+#include "bezinv/plan.hpp"
+
+namespace bezinv {
+namespace {
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+std::vector<Curve> random_curves(std::size_t count, std::mt19937_64& rng) {
+  std::vector<Curve> curves;
+  for (std::size_t i = 0; i < count; ++i) {
+    const CurveKind kind = i % 3 == 0 ? CurveKind::rational : CurveKind::rational_bezier;
+    curves.push_back(datasets::random_curve(kind, 2 + static_cast<int>(i % 19), rng,
+                                            i % 2 ? datasets::ControlPolygon::perturbed_arc
+                                                  : datasets::ControlPolygon::unit_square));
+    curves.back().id = std::to_string(i);
+  }
+  return curves;
+}
+
+TEST(MakePlans, TheSamePlansAsOneAtATimeInOrder) {
+  std::mt19937_64 rng(31);
+  const std::vector<Curve> curves = random_curves(120, rng);
+  for (int threads : {1, 2, 0}) {
+    const std::vector<InversionPlan> plans = make_plans(curves, threads);
+    ASSERT_EQ(plans.size(), curves.size());
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+      SCOPED_TRACE(testing::Message() << "threads " << threads << ", curve " << i);
+      const InversionPlan one = make_plan(curves[i]);
+      EXPECT_EQ(plans[i].curve.id, curves[i].id);
+      EXPECT_EQ(plans[i].degree, one.degree);
+      EXPECT_EQ(plans[i].isolation_pieces, one.isolation_pieces);
+      EXPECT_TRUE(same_bits(plans[i].B0, one.B0));
+      EXPECT_TRUE(same_bits(plans[i].By, one.By));
+      EXPECT_TRUE(same_bits(plans[i].isolation_boxes, one.isolation_boxes));
+      EXPECT_TRUE(same_bits(plans[i].isolation_far, one.isolation_far));
+      EXPECT_TRUE(same_bits(plans[i].isolation_unique, one.isolation_unique));
+    }
+  }
+  EXPECT_TRUE(make_plans({}, 2).empty());
+}
+
+// Two bad curves among good ones: the error names the first, whichever thread met it.
+TEST(MakePlans, NamesTheFirstCurveThatFailsValidation) {
+  std::mt19937_64 rng(32);
+  std::vector<Curve> curves = random_curves(300, rng);
+  curves[217].x_num[1] = std::numeric_limits<double>::quiet_NaN();
+  curves[143].y_den = {1.0, -1.0, 1.0};  // a pole inside the segment (and a length mismatch)
+  for (int threads : {1, 2}) {
+    try {
+      make_plans(curves, threads);
+      ADD_FAILURE() << "no PlansError";
+    } catch (const PlansError& e) {
+      EXPECT_EQ(e.index, 143u);
+      std::string expected;
+      try {
+        make_plan(curves[143]);
+      } catch (const CurveError& one) {
+        expected = one.what();
+      }
+      EXPECT_FALSE(expected.empty());
+      EXPECT_EQ(std::string(e.what()), expected);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bezinv
