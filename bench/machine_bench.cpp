@@ -5,6 +5,9 @@
 //   BM_Machine_Sqrt  sqrt(x) on 8 independent vectors
 // items_per_second = lane operations per second (a vector of 8 doubles counts 8).
 //   BM_Machine_Write / BM_Machine_Copy  memset / memcpy of 256 MiB: bytes_per_second of memory
+//   BM_Machine_PointsToResults/T  the pipeline's memory traffic and nothing else: read a Point,
+//                    write a PointResult (16 + 56 bytes), on T threads: the ceiling of any in-memory
+//                    inversion that returns the whole record; items_per_second = points
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "machine_bench.cpp"
 #include <hwy/foreach_target.h>  // re-includes this file once per target
@@ -60,6 +63,12 @@ HWY_AFTER_NAMESPACE();
 #include <cstring>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "bezinv/invert.hpp"
+
 namespace bezinv_bench {
 HWY_EXPORT(FmaChains);
 HWY_EXPORT(DivChains);
@@ -103,11 +112,38 @@ void BM_Machine_Copy(benchmark::State& state) {
   state.SetBytesProcessed(static_cast<std::int64_t>(2 * state.iterations() * kStreamBytes));
 }
 
+// 2^24 points (256 MiB in, 896 MiB out), on range(0) threads (a TBB arena, as the engine's).
+void BM_Machine_PointsToResults(benchmark::State& state) {
+  constexpr std::size_t kPoints = std::size_t{1} << 24;
+  static std::vector<bezinv::Point> points(kPoints, bezinv::Point{0.25, 0.5});
+  static std::vector<bezinv::PointResult> results(kPoints);
+  tbb::task_arena arena(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kPoints, 1 << 16), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          bezinv::PointResult& r = results[i];
+          r.t = points[i].x;
+          r.residual = points[i].y;
+          r.t2 = r.sigma_next = bezinv::PointResult::nan;
+          r.sigma_min = points[i].x * points[i].y;
+          r.status = bezinv::Status::ok;
+          r.path = bezinv::Path::bezout_lu;
+          r.reason = "";
+        }
+      });
+    });
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kPoints));
+}
+
 BENCHMARK(BM_Machine_Fma);
 BENCHMARK(BM_Machine_Div);
 BENCHMARK(BM_Machine_Sqrt);
 BENCHMARK(BM_Machine_Write)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Machine_Copy)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Machine_PointsToResults)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace bezinv_bench
