@@ -4,20 +4,22 @@
 //
 // Why. adj(B) B = det(B) I, so for B of rank 2 every nonzero column of adj(B) spans the null
 // space, and for regular B, adj(B) = det(B) B^-1: multiplying by it is one step of inverse
-// iteration without a factorization or a division. Against the L D L^T seed and its solves
-// at this size: 267M against 171M matrices/s on AVX-512, 91M against 81M on AVX2
-// (BM_KernelNullVectorSeed/n:3); the whole pipeline at degree 3 1.14x (BM_Engine_refined/3, best
-// of 7 alternating runs).
+// iteration without a factorization or a division. Against the L D L^T seed with three solves at
+// this size: 298M against 170M matrices/s on AVX-512, 105M against 88M on AVX2
+// (BM_KernelNullVectorSeed/n:3, best of 5 alternating runs).
 //
 // What it computes, per lane, on B normalised to ||B||_F = 1:
-//   x = the column of adj(B) of largest norm (the best-conditioned choice: for rank 2 it is
-//       sigma_1 sigma_2 z z_j, largest where |z_j| is; for nullity 2 every column is rounding);
+//   x = adj(B) (1, 1, 1), the L D L^T seed's start: every Bernstein basis vector is positive, so
+//       for rank 2, where adj(B) = +-sigma_1 sigma_2 z z^T, x = +-sigma_1 sigma_2 (z . 1) z is far
+//       from 0. (Starting from the largest column of adj(B) instead, the settling measure below
+//       was 2-10x larger on points off the curve, and twice as many of them missed the engine's
+//       gate at noise 1e-4: the degree-3 pipeline ran at 0.48x there.)
 //   z = adj(B) x / ||adj(B) x||, a second step, so that the angle between x and z measures how
-//       far the iteration is from settling, as the L D L^T seed's last two iterates do (for
-//       regular B it shrinks with sigma_3 / sigma_2; rank 2 leaves rounding);
+//       far the iteration is from settling, as the L D L^T seed's two iterates do (for regular B
+//       it shrinks with sigma_3 / sigma_2; rank 2 leaves rounding);
 //   the residual ||B z|| / ||B||_F from B's own entries.
-// An adjugate that vanishes (B of rank 1 or 0, nullity 2 or 3, to rounding: kVanishing2) gives
-// defect 1 and z = (1, 1, 1) / sqrt(3).
+// Where x or z vanishes (B of rank 1 or 0, nullity 2 or 3, to rounding: kVanishing2): defect 1
+// and z = (1, 1, 1) / sqrt(3).
 // Only B's lower triangle is read.
 #if defined(BEZINV_KERNELS_BATCH_ADJUGATE_NULL_VECTOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef BEZINV_KERNELS_BATCH_ADJUGATE_NULL_VECTOR_INL_H_
@@ -67,16 +69,11 @@ HWY_NOINLINE void seed_group(D d, std::size_t stride, std::size_t first, std::si
   const V a20 = hn::MulSub(b10, b21, hn::Mul(b11, b20));
   const V a21 = hn::MulSub(b10, b20, hn::Mul(b00, b21));
 
-  // x: the column of largest norm (ties to the first).
-  const V n0 = hn::MulAdd(a00, a00, hn::MulAdd(a10, a10, hn::Mul(a20, a20)));
-  const V n1 = hn::MulAdd(a10, a10, hn::MulAdd(a11, a11, hn::Mul(a21, a21)));
-  const V n2 = hn::MulAdd(a20, a20, hn::MulAdd(a21, a21, hn::Mul(a22, a22)));
-  const auto take1 = hn::Gt(n1, n0);
-  const auto take2 = hn::Gt(n2, hn::Max(n0, n1));
-  const V x0 = hn::IfThenElse(take2, a20, hn::IfThenElse(take1, a10, a00));
-  const V x1 = hn::IfThenElse(take2, a21, hn::IfThenElse(take1, a11, a10));
-  const V x2 = hn::IfThenElse(take2, a22, hn::IfThenElse(take1, a21, a20));
-  const V xx = hn::IfThenElse(take2, n2, hn::IfThenElse(take1, n1, n0));
+  // x = adj(B) (1, 1, 1): the first step, from the start the L D L^T seed takes too.
+  const V x0 = hn::Add(hn::Add(a00, a10), a20);
+  const V x1 = hn::Add(hn::Add(a10, a11), a21);
+  const V x2 = hn::Add(hn::Add(a20, a21), a22);
+  const V xx = hn::MulAdd(x0, x0, hn::MulAdd(x1, x1, hn::Mul(x2, x2)));
 
   // z = adj(B) x, normalised: the second iterate.
   V z0 = hn::MulAdd(a00, x0, hn::MulAdd(a10, x1, hn::Mul(a20, x2)));
