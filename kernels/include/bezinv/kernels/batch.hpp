@@ -77,8 +77,8 @@ struct Implementation {
   // settled z is not proof of a simple null vector: callers check what they make of it by other
   // means (the engine's isolation certificate) and send the lanes they cannot settle to
   // null_vector or symmetric_svd. 2-4.5x faster than null_vector (bench/kernels_bench.cpp).
-  // At n = 3, z is instead adj(B)^2 e_j normalised, e_j picking adj(B)'s largest column (two steps
-  // of inverse iteration without a factorization), and the defect is the sine of the angle
+  // At n = 3, z is instead adj(B)^2 (1, 1, 1) normalised (the same two steps of inverse iteration,
+  // without a factorization: adj(B) = det(B) B^-1), and the defect is the sine of the angle
   // between the two steps (batch/adjugate_null_vector-inl.hpp).
   void (*null_vector_seed)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                            double* defect, double* residual);
