@@ -157,10 +157,11 @@ void piece(InversionPlan& plan, int j, int K, const CoordinateProducts& products
     for (double r : {r_lo, r_hi}) {
       p.gx[p.generators] = fx.h[k];
       p.gy[p.generators] = r * fy.h[k];
-      // (Not hypot: 2n calls per piece were a tenth of make_plan at degree 3; the generators of a
-      // normalized curve are far from overflow, and the bounds keep a factor 2 for rounding.)
-      const double gx = p.gx[p.generators], gy = p.gy[p.generators];
-      p.length[p.generators++] = std::sqrt(gx * gx + gy * gy);
+      // (hypot only where the squares could underflow, which would drop a tiny generator from the
+      // cone: 2n calls a piece were a tenth of make_plan at degree 3. A normalized curve's
+      // generators are far from overflow, and the bounds keep a factor 2 for rounding.)
+      const double gx = p.gx[p.generators], gy = p.gy[p.generators], squares = gx * gx + gy * gy;
+      p.length[p.generators++] = squares > 1e-280 ? std::sqrt(squares) : std::hypot(gx, gy);
     }
   p.wx_max = fx.w_max;
   p.bend = std::hypot(fx.bend, fy.bend);
