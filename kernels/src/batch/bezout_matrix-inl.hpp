@@ -32,20 +32,57 @@ void bezout_matrix_batch(int n, std::size_t count, std::size_t stride, const dou
     for (std::size_t l = 0; l < L; ++l) lanes[l] = first + l < count ? p[first + l] : 0.0;
     return hn::Load(d, lanes);
   };
-  // Whole vectors: rows are `stride` long, a multiple of kBatchAlignment >= L.
-  for (std::size_t first = 0; first < count; first += L) {
+  // One entry of the lower triangle (the kernels read nothing else) for the point (pu, pv).
+  auto entry = [&](std::size_t i, hn::Vec<decltype(d)> pu, hn::Vec<decltype(d)> pv, hn::Vec<decltype(d)> uv) {
+    return hn::Add(hn::Sub(hn::Sub(hn::Set(d, B0[i]), hn::Mul(pu, hn::Set(d, Bx[i]))), hn::Mul(pv, hn::Set(d, By[i]))),
+                   hn::Mul(uv, hn::Set(d, Bxy[i])));
+  };
+  // poison: the sum of entry * 0 (NaN once an entry is not finite, +0 otherwise, in any order of
+  // the sum). One partial sum per row, added to the total at the row's end: a single running sum
+  // was one dependent add per entry, the stage's critical path (BM_KernelBezoutMatrix).
+  const auto zero = hn::Zero(d);
+  std::size_t first = 0;
+  // Two whole vectors at a time: each coefficient is broadcast once for both (the broadcasts are
+  // loads, and were two thirds of the loads).
+  for (; first + 2 * L <= count; first += 2 * L) {
+    const auto pu0 = hn::LoadU(d, u + first), pv0 = hn::LoadU(d, v + first);
+    const auto pu1 = hn::LoadU(d, u + first + L), pv1 = hn::LoadU(d, v + first + L);
+    const auto uv0 = hn::Mul(pu0, pv0), uv1 = hn::Mul(pu1, pv1);
+    auto sum0 = zero, sum1 = zero;
+    for (int r = 0; r < n; ++r) {
+      auto row0 = zero, row1 = zero;
+      for (int c = 0; c <= r; ++c) {
+        const std::size_t i = static_cast<std::size_t>(r * n + c);
+        const auto b0 = hn::Set(d, B0[i]), bx = hn::Set(d, Bx[i]), by = hn::Set(d, By[i]), bxy = hn::Set(d, Bxy[i]);
+        const auto e0 = hn::Add(hn::Sub(hn::Sub(b0, hn::Mul(pu0, bx)), hn::Mul(pv0, by)), hn::Mul(uv0, bxy));
+        const auto e1 = hn::Add(hn::Sub(hn::Sub(b0, hn::Mul(pu1, bx)), hn::Mul(pv1, by)), hn::Mul(uv1, bxy));
+        hn::StoreU(e0, d, B + i * stride + first);  // B need not be vector-aligned
+        hn::StoreU(e1, d, B + i * stride + first + L);
+        row0 = hn::Add(row0, hn::Mul(e0, zero));
+        row1 = hn::Add(row1, hn::Mul(e1, zero));
+      }
+      sum0 = hn::Add(sum0, row0);
+      sum1 = hn::Add(sum1, row1);
+    }
+    hn::StoreU(sum0, d, poison + first);
+    hn::StoreU(sum1, d, poison + first + L);
+  }
+  // The rest one vector at a time (whole vectors: rows are `stride` long, a multiple of
+  // kBatchAlignment >= L).
+  for (; first < count; first += L) {
     const auto pu = load(u, first), pv = load(v, first);
     const auto uv = hn::Mul(pu, pv);
-    auto sum = hn::Zero(d);
-    for (int r = 0; r < n; ++r)
-      for (int c = 0; c <= r; ++c) {  // the lower triangle: the kernels read nothing else
+    auto sum = zero;
+    for (int r = 0; r < n; ++r) {
+      auto row = zero;
+      for (int c = 0; c <= r; ++c) {
         const std::size_t i = static_cast<std::size_t>(r * n + c);
-        const auto entry = hn::Add(hn::Sub(hn::Sub(hn::Set(d, B0[i]), hn::Mul(pu, hn::Set(d, Bx[i]))),
-                                           hn::Mul(pv, hn::Set(d, By[i]))),
-                                   hn::Mul(uv, hn::Set(d, Bxy[i])));
-        hn::StoreU(entry, d, B + i * stride + first);  // B need not be vector-aligned
-        sum = hn::Add(sum, hn::Mul(entry, hn::Zero(d)));  // NaN once an entry is not finite
+        const auto e = entry(i, pu, pv, uv);
+        hn::StoreU(e, d, B + i * stride + first);
+        row = hn::Add(row, hn::Mul(e, zero));
       }
+      sum = hn::Add(sum, row);
+    }
     if (first + L <= count) {
       hn::StoreU(sum, d, poison + first);
     } else {
