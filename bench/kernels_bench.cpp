@@ -121,6 +121,40 @@ void BM_KernelBezoutMatrix(benchmark::State& state, const Implementation* impl, 
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
 }
 
+// The engine's seed step from the points, two ways: bezout_matrix then null_vector_seed (B stored
+// in the batch, read back), against bezout_null_vector_seed (B formed in registers, never stored).
+// The same bits; items_per_second = points per second.
+void BM_KernelBezoutSeed(benchmark::State& state, const Implementation* impl, int n, bool formed) {
+  std::mt19937_64 rng(11 + n);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const std::size_t nn = static_cast<std::size_t>(n) * n, stride = batch_stride(kBatch);
+  std::vector<double> B0(nn), Bx(nn), By(nn), Bxy(nn), u(kDistinct), v(kDistinct);
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c <= r; ++c) {
+      const double b0 = unit(rng), bx = unit(rng), by = unit(rng);
+      for (const std::size_t i : {static_cast<std::size_t>(r * n + c), static_cast<std::size_t>(c * n + r)})
+        B0[i] = b0, Bx[i] = bx, By[i] = by, Bxy[i] = 0.0;  // a common denominator
+    }
+  for (std::size_t l = 0; l < kDistinct; ++l) u[l] = unit(rng), v[l] = unit(rng);
+  std::vector<double> B(nn * stride), z(static_cast<std::size_t>(n) * stride), defect(kBatch), residual(kBatch),
+      poison(kBatch);
+  std::size_t first = 0;
+  for (auto _ : state) {
+    if (formed) {
+      impl->bezout_null_vector_seed(n, kBatch, stride, B0.data(), Bx.data(), By.data(), Bxy.data(), u.data() + first,
+                                    v.data() + first, z.data(), defect.data(), residual.data(), poison.data());
+    } else {
+      impl->bezout_matrix(n, kBatch, stride, B0.data(), Bx.data(), By.data(), Bxy.data(), u.data() + first,
+                          v.data() + first, B.data(), poison.data());
+      impl->null_vector_seed(n, kBatch, stride, B.data(), z.data(), defect.data(), residual.data());
+    }
+    benchmark::DoNotOptimize(z.data());
+    benchmark::ClobberMemory();
+    first = (first + kBatch) % kDistinct;
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+}
+
 // The baseline: Eigen's fixed-size self-adjoint eigensolver, one matrix per call.
 template <int N>
 void BM_KernelEigenSelfAdjoint(benchmark::State& state) {
@@ -137,7 +171,7 @@ void BM_KernelEigenSelfAdjoint(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
 }
 
-constexpr int kSizes[] = {3, 5, 8, 15, 20, 24};
+constexpr int kSizes[] = {3, 5, 8, 10, 12, 15, 20, 24};
 
 int register_kernels() {
   for (const Implementation* impl : available_implementations())
@@ -155,6 +189,10 @@ int register_kernels() {
       benchmark::RegisterBenchmark(seed.c_str(), BM_KernelNullVectorSeed, impl, n);
       const std::string bezout = std::string("BM_KernelBezoutMatrix").append(suffix);
       benchmark::RegisterBenchmark(bezout.c_str(), BM_KernelBezoutMatrix, impl, n);
+      const std::string stored = std::string("BM_KernelBezoutSeed_stored").append(suffix);
+      const std::string formed = std::string("BM_KernelBezoutSeed_formed").append(suffix);
+      benchmark::RegisterBenchmark(stored.c_str(), BM_KernelBezoutSeed, impl, n, false);
+      benchmark::RegisterBenchmark(formed.c_str(), BM_KernelBezoutSeed, impl, n, true);
     }
   return 0;
 }

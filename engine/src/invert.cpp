@@ -63,6 +63,12 @@ double normalized_tolerance(const InversionPlan& plan, const InvertOptions& opti
 
 // Points per batch (see "The pipeline" below).
 constexpr std::size_t kBatchLanes = 64;
+// From this degree the fast path's seed forms B in registers instead of reading the batch's
+// (invert_batch_lanes). Measured, BM_KernelBezoutSeed_formed against _stored (points/s, 3 runs):
+// AVX-512 0.8x at n = 5, 1.13x at 8, 1.3x at 10-12, 1.25-1.35x at 15-24; AVX2 0.9x at 8, 1.0x at
+// 10, 1.1x at 12, 1.15-1.6x at 15-24. Below, B fits in L1 and forming it twice (factorization and
+// residual) costs more than reading it.
+constexpr int kFormedBMinDegree = 8;
 
 // p = X_num - u0 X_den and q = Y_num - v0 Y_den at the plan's degree.
 struct PointPolynomials {
@@ -702,6 +708,26 @@ void flush_queues(const InversionPlan& plan, const InvertOptions& options, Stage
   flush_svd_queue(plan, options, stages);
 }
 
+// A lane whose Bezout matrix overflowed (poison[l] not 0: an entry is not finite) is answered
+// failed, and leaves the pipeline.
+void mark_overflowing_b(const double* poison, std::size_t count, BatchWorkspace& w, PointResult* results) {
+  for (std::size_t l = 0; l < count; ++l)
+    if (w.active[l] && !(poison[l] == 0.0)) {
+      results[l].status = Status::failed;
+      results[l].reason = "point so far from the curve that the Bezout matrix overflows";
+      w.active[l] = 0;
+    }
+}
+
+// B of the points (u[k], v[k]), k < m, into lanes 0..m-1 of B (stride kBatchLanes), as stage 1
+// forms it; for the lanes the seed's pass leaves to pass 2 or the SVD path (their B did not
+// overflow: that lane left at the seed).
+void form_compacted_b(const InversionPlan& plan, const double* u, const double* v, std::size_t m, double* B) {
+  std::array<double, kBatchLanes> poison;
+  kernels::active_implementation().bezout_matrix(plan.degree, m, kBatchLanes, plan.B0.data(), plan.Bx.data(),
+                                                 plan.By.data(), plan.Bxy.data(), u, v, B, poison.data());
+}
+
 // One batch (count <= kBatchLanes) of points of one curve through the five stages (but for the
 // lanes left waiting in this thread's queues).
 void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
@@ -737,7 +763,13 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     }
     if (!w.active[l]) w.u[l] = w.v[l] = 0.0;
   }
-  if (n >= 2) {
+  // On the fast path's two passes from degree kFormedBMinDegree the seed kernel forms each lane's
+  // B from the plan itself, in registers (bezout_null_vector_seed, the same bits as
+  // bezout_matrix): there a batch's B no longer fits in L1, and reading it back was most of the
+  // seed's time. The rare lanes that go on to pass 2 or the SVD path get their B formed then,
+  // compacted (form_compacted_b).
+  const bool formed_b = options.fast_path && options.refine && n >= kFormedBMinDegree && n <= kFastPathMaxDegree;
+  if (n >= 2 && !formed_b) {
     // The lower triangle only: B is symmetric and the kernels read nothing else (batch.hpp).
     // An entry that overflowed makes its lane's sum of entry * 0 NaN (inf * 0). A kernel, so that
     // it runs in the CPU's widest vectors (this file is compiled for baseline x86-64): the stage
@@ -746,12 +778,8 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     kernels::active_implementation().bezout_matrix(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                                    plan.Bxy.data(), w.u.data(), w.v.data(), w.B.data(),
                                                    poison.data());
+    mark_overflowing_b(poison.data(), count, w, results);
     for (std::size_t l = 0; l < count; ++l) {
-      if (w.active[l] && !(poison[l] == 0.0)) {
-        results[l].status = Status::failed;
-        results[l].reason = "point so far from the curve that the Bezout matrix overflows";
-        w.active[l] = 0;
-      }
       if (!w.active[l])
         for (int i = 0; i < nn; ++i) w.B[i * stride + l] = (i % (n + 1) == 0) ? 1.0 : 0.0;
     }
@@ -798,11 +826,18 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
   if (options.fast_path && options.refine && n >= 2 && n <= kFastPathMaxDegree) {
     const kernels::Implementation& kernel = kernels::active_implementation();
     const bool two_passes = n >= 3;
-    if (two_passes)
+    if (formed_b) {
+      std::array<double, kBatchLanes> poison;
+      kernel.bezout_null_vector_seed(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
+                                     plan.Bxy.data(), w.u.data(), w.v.data(), w.z.data(), w.defect.data(),
+                                     w.estimate.data(), poison.data());
+      mark_overflowing_b(poison.data(), count, w, results);
+    } else if (two_passes) {
       kernel.null_vector_seed(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data());
-    else
+    } else {
       kernel.null_vector(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),
                          w.second.data());
+    }
     clock.lap(&StageSeconds::kernel);
     kernel.bernstein_parameter(n, count, stride, w.z.data(), w.t_algebraic.data());
     for (std::size_t l = 0; l < count; ++l)
@@ -865,8 +900,11 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     clock.lap(&StageSeconds::refine);
     if (waiting > 0) {
       // Pass 2: the full kernel for the waiting lanes, compacted, its results put back in their lanes.
-      for (std::size_t k = 0; k < waiting; ++k)
-        for (int i = 0; i < nn; ++i) w.gap_B[i * stride + k] = w.B[i * stride + w.gap_lane_of[k]];
+      {
+        std::array<double, kBatchLanes> u, v;
+        for (std::size_t k = 0; k < waiting; ++k) u[k] = w.u[w.gap_lane_of[k]], v[k] = w.v[w.gap_lane_of[k]];
+        form_compacted_b(plan, u.data(), v.data(), waiting, w.gap_B.data());
+      }
       kernel.null_vector(n, waiting, stride, w.gap_B.data(), w.gap_z.data(), w.gap_defect.data(),
                          w.gap_estimate.data(), w.gap_second.data());
       for (std::size_t k = 0; k < waiting; ++k) {
@@ -895,12 +933,14 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
   for (std::size_t l = 0; l < count; ++l) {
     if (!w.active[l]) continue;
     if (m != l) {
-      for (int i = 0; i < nn; ++i) w.B[i * stride + m] = w.B[i * stride + l];
+      if (!formed_b)
+        for (int i = 0; i < nn; ++i) w.B[i * stride + m] = w.B[i * stride + l];
       w.u[m] = w.u[l];
       w.v[m] = w.v[l];
     }
     w.lane_of[m++] = static_cast<std::uint8_t>(l);
   }
+  if (formed_b && m > 0) form_compacted_b(plan, w.u.data(), w.v.data(), m, w.B.data());
 
   if (m == 0) {
     clock.lap(&StageSeconds::decide);  // the routing above is the decide stage's

@@ -32,6 +32,7 @@
 
 #include <cstddef>
 
+#include "batch/matrix_source-inl.hpp"
 #include "batch/wide-inl.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -44,15 +45,20 @@ namespace hn = wide;
 // sigma_1 sigma_2 < 1e-140 is far below any Bezout matrix a seed is asked for.
 inline constexpr double kVanishing2 = 1e-280;
 
-template <class D>
-HWY_NOINLINE void seed_group(D d, std::size_t stride, std::size_t first, std::size_t lanes,
-                             const double* HWY_RESTRICT B, double* HWY_RESTRICT z, double* HWY_RESTRICT defect,
-                             double* HWY_RESTRICT residual) {
+template <class Source, class D>
+HWY_NOINLINE void seed_group(D d, std::size_t stride, std::size_t first, std::size_t lanes, const Source& source,
+                             double* HWY_RESTRICT z, double* HWY_RESTRICT defect, double* HWY_RESTRICT residual) {
   using V = hn::Vec<D>;
   constexpr std::size_t L = hn::MaxLanes(D());
   const V one = hn::Set(d, 1.0);
-  auto entry = [&](int r, int c) { return hn::LoadU(d, B + static_cast<std::size_t>(r * 3 + c) * stride + first); };
+  const GroupMatrix<Source, D> matrix(d, source, stride, first, lanes);
+  auto entry = [&](int r, int c) { return matrix.entry(static_cast<std::size_t>(r * 3 + c)); };
   V b00 = entry(0, 0), b10 = entry(1, 0), b11 = entry(1, 1), b20 = entry(2, 0), b21 = entry(2, 1), b22 = entry(2, 2);
+  if constexpr (GroupMatrix<Source, D>::kFormed) {  // as bezout_matrix's: NaN once an entry is not finite
+    const V zero = hn::Zero(d);
+    matrix.write_poison(hn::Add(hn::Add(hn::Add(hn::Mul(b00, zero), hn::Mul(b10, zero)), hn::Add(hn::Mul(b11, zero), hn::Mul(b20, zero))),
+                                hn::Add(hn::Mul(b21, zero), hn::Mul(b22, zero))));
+  }
   // ||B||_F^2: the off-diagonal entries count twice.
   const V off2 = hn::MulAdd(b10, b10, hn::MulAdd(b20, b20, hn::Mul(b21, b21)));
   const V norm = hn::Sqrt(hn::MulAdd(hn::Set(d, 2.0), off2, hn::MulAdd(b00, b00, hn::MulAdd(b11, b11, hn::Mul(b22, b22)))));
@@ -131,8 +137,8 @@ HWY_NOINLINE void seed_group(D d, std::size_t stride, std::size_t first, std::si
 
 // Lanes per group: as null_vector_fixed (kWideVectors<3>, 4 vectors on the SIMD targets) while the
 // batch has them; each lane computes the same numbers either way.
-template <int G>
-void seed(std::size_t count, std::size_t stride, const double* B, double* z, double* defect, double* residual) {
+template <int G, class Source>
+void seed(std::size_t count, std::size_t stride, const Source& B, double* z, double* defect, double* residual) {
   using Wide = wide::Tag<G>;
   constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(wide::Tag<1>());
   std::size_t first = 0;

@@ -36,10 +36,13 @@ struct Table {
       const auto newton = batch::rational_newton_kernel(kCandidates[i].target);
       const auto parameter = batch::bernstein_parameter_kernel(kCandidates[i].target);
       const auto bezout = batch::bezout_matrix_kernel(kCandidates[i].target);
+      const auto bezout_seed = batch::bezout_null_vector_seed_kernel(kCandidates[i].target);
       if (svd == nullptr || null == nullptr || null_seed == nullptr || newton == nullptr ||
-          parameter == nullptr || bezout == nullptr || (supported & kCandidates[i].target) == 0)
+          parameter == nullptr || bezout == nullptr || bezout_seed == nullptr ||
+          (supported & kCandidates[i].target) == 0)
         continue;
-      storage[count] = Implementation{kCandidates[i].name, svd, null, null_seed, newton, parameter, bezout};
+      storage[count] =
+          Implementation{kCandidates[i].name, svd, null, null_seed, newton, parameter, bezout, bezout_seed};
       available[count] = &storage[count];
       ++count;
     }

@@ -21,6 +21,10 @@ using BernsteinParameterKernel = void (*)(int n, std::size_t count, std::size_t 
 using BezoutMatrixKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
                                     const double* By, const double* Bxy, const double* u, const double* v, double* B,
                                     double* poison);
+using BezoutNullVectorSeedKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B0,
+                                            const double* Bx, const double* By, const double* Bxy, const double* u,
+                                            const double* v, double* z, double* defect, double* residual,
+                                            double* poison);
 
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);
@@ -29,5 +33,6 @@ NullVectorSeedKernel null_vector_seed_kernel(std::int64_t target);
 RationalNewtonKernel rational_newton_kernel(std::int64_t target);
 BernsteinParameterKernel bernstein_parameter_kernel(std::int64_t target);
 BezoutMatrixKernel bezout_matrix_kernel(std::int64_t target);
+BezoutNullVectorSeedKernel bezout_null_vector_seed_kernel(std::int64_t target);
 
 }  // namespace bezinv::kernels::batch

@@ -15,6 +15,7 @@
 #include <type_traits>
 
 #include "batch/constants.hpp"
+#include "batch/matrix_source-inl.hpp"
 #include "batch/sizes-inl.hpp"
 #include "batch/wide-inl.hpp"
 
@@ -372,32 +373,53 @@ HWY_INLINE hn::Vec<D> ritz_growth(D d, const double* HWY_RESTRICT u, const doubl
 // off it has a slightly regular B whose z is as good a seed as a null vector.
 // kGap false (null_vector_seed): z from L D L^T without pivoting (LaneLdl), measure 1 alone, and
 // no deflated iterations, no sigma_{n-1} estimate, no second vector.
-template <int N, bool kGap, class D>
+template <int N, bool kGap, class Source, class D>
 HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, std::size_t lanes,
-                                    const double* HWY_RESTRICT B, double* HWY_RESTRICT z,
+                                    const Source& source, double* HWY_RESTRICT z,
                                     double* HWY_RESTRICT defect, double* HWY_RESTRICT estimate,
                                     double* HWY_RESTRICT second) {
   constexpr std::size_t L = hn::MaxLanes(D());
   const auto one = hn::Set(d, 1.0);
+  const GroupMatrix<Source, D> matrix(d, source, stride, first, lanes);
+  constexpr bool kFormed = GroupMatrix<Source, D>::kFormed;
   auto entry = [&](int r, int c) {  // B(r, c) from the lower triangle
-    return hn::LoadU(d, B + static_cast<std::size_t>(r >= c ? r * N + c : c * N + r) * stride + first);
+    return matrix.entry(static_cast<std::size_t>(r >= c ? r * N + c : c * N + r));
   };
-  // ||B||_F^2 from the lower triangle: the diagonal, and twice the entries below it.
-  auto diagonal2 = hn::Zero(d), below2 = hn::Zero(d);
+  // One pass over B's lower triangle (stored: at high degree in L2 only; formed: from the
+  // coefficients, matrix_source-inl.hpp) copies it into the factorization's storage and sums
+  // ||B||_F^2: the diagonal, and twice the entries below it, one partial sum per row (a single
+  // running sum was a chain of n^2 / 2 dependent multiply-adds). Then the copy, in L1, is scaled
+  // in place.
+  using Factorization = std::conditional_t<kGap, LaneLu<N, D>, LaneLdl<N, D>>;
+  Factorization lu;
+  auto diagonal2 = hn::Zero(d), below2 = hn::Zero(d), poison = hn::Zero(d);
   for (int r = 0; r < N; ++r) {
-    diagonal2 = hn::MulAdd(entry(r, r), entry(r, r), diagonal2);
-    for (int c = 0; c < r; ++c) below2 = hn::MulAdd(entry(r, c), entry(r, c), below2);
+    auto row2 = hn::Zero(d), row_poison = hn::Zero(d);
+    for (int c = 0; c < r; ++c) {
+      const auto e = entry(r, c);
+      row2 = hn::MulAdd(e, e, row2);
+      if constexpr (kFormed) row_poison = hn::Add(row_poison, hn::Mul(e, hn::Zero(d)));
+      hn::Store(e, d, lu.at(r, c));
+    }
+    const auto e = entry(r, r);
+    diagonal2 = hn::MulAdd(e, e, diagonal2);
+    if constexpr (kFormed) poison = hn::Add(poison, hn::Add(row_poison, hn::Mul(e, hn::Zero(d))));
+    hn::Store(e, d, lu.at(r, r));
+    below2 = hn::Add(below2, row2);
   }
+  matrix.write_poison(poison);  // formed B: NaN where an entry is not finite, +0 otherwise
   const auto norm = hn::Sqrt(hn::MulAdd(hn::Set(d, 2.0), below2, diagonal2));
   const auto zero_matrix = hn::Eq(norm, hn::Zero(d));
   const auto scale = hn::IfThenElse(zero_matrix, one, hn::Div(one, norm));
-
-  // The seed (kGap false) factors without pivoting (LaneLdl), null_vector with it (LaneLu).
-  using Factorization = std::conditional_t<kGap, LaneLu<N, D>, LaneLdl<N, D>>;
-  Factorization lu;
+  // The seed (kGap false) factors without pivoting (LaneLdl), reading the lower triangle only;
+  // null_vector with it (LaneLu), which needs the upper too: mirrored from the lower.
   for (int r = 0; r < N; ++r)
-    for (int c = 0; c < (Factorization::kLowerOnly ? r + 1 : N); ++c)
-      hn::Store(hn::Mul(entry(r, c), scale), d, lu.at(r, c));
+    for (int c = 0; c <= r; ++c) {
+      const auto e = hn::Mul(hn::Load(d, lu.at(r, c)), scale);
+      hn::Store(e, d, lu.at(r, c));
+      if constexpr (!Factorization::kLowerOnly)
+        if (c < r) hn::Store(e, d, lu.at(c, r));
+    }
   lu.factor(d);
 
   // Inverse iteration from (1, ..., 1) / sqrt(n).
@@ -418,13 +440,21 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
   }
 
   // ||B z|| / ||B||_F with the original entries (scaled once at the end: the same to rounding as
-  // with the normalised entries, at n^2 fewer multiplications).
-  auto residual2 = hn::Zero(d);
+  // with the normalised entries, at n^2 fewer multiplications), B z from the lower triangle in
+  // one pass over it: entry (r, c), c < r, adds to row r (in a register) and to row c (in y).
+  HWY_ALIGN double y[N * L];
   for (int r = 0; r < N; ++r) {
-    auto row = hn::Zero(d);
-    for (int c = 0; c < N; ++c) row = hn::MulAdd(entry(r, c), hn::Load(d, x + c * L), row);
-    residual2 = hn::MulAdd(row, row, residual2);
+    const auto xr = hn::Load(d, x + r * L);
+    auto row = hn::Mul(entry(r, r), xr);
+    for (int c = 0; c < r; ++c) {
+      const auto e = entry(r, c);
+      row = hn::MulAdd(e, hn::Load(d, x + c * L), row);
+      hn::Store(hn::MulAdd(e, xr, hn::Load(d, y + c * L)), d, y + c * L);
+    }
+    hn::Store(row, d, y + r * L);
   }
+  auto residual2 = hn::Zero(d);
+  for (int r = 0; r < N; ++r) residual2 = hn::MulAdd(hn::Load(d, y + r * L), hn::Load(d, y + r * L), residual2);
   const auto residual = hn::Mul(hn::Sqrt(residual2), scale);
   auto result = unsettled;
   auto next = hn::Set(d, std::numeric_limits<double>::infinity());  // n = 1: no sigma_{n-1}
@@ -518,8 +548,8 @@ inline constexpr int kWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == H
                                     : N <= 8                                                        ? 4
                                                                                                     : 2;
 
-template <int N, bool kGap>
-void null_vector_fixed(std::size_t count, std::size_t stride, const double* B, double* z, double* defect,
+template <int N, bool kGap, class Source>
+void null_vector_fixed(std::size_t count, std::size_t stride, const Source& B, double* z, double* defect,
                        double* estimate, double* second) {
   using Wide = wide::Tag<kWideVectors<N>>;
   constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(wide::Tag<1>());

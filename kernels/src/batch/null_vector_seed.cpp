@@ -17,9 +17,9 @@ namespace bezinv::kernels::HWY_NAMESPACE {
 
 void null_vector_seed_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                             double* defect, double* residual) {
-  if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, B, z, defect, residual);
+  if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, StoredMatrices{B}, z, defect, residual);
   dispatch_size(n, [&](auto size) {
-    null_vector_fixed<decltype(size)::value, false>(count, stride, B, z, defect, residual, nullptr);
+    null_vector_fixed<decltype(size)::value, false>(count, stride, StoredMatrices{B}, z, defect, residual, nullptr);
   });
 }
 

@@ -116,6 +116,16 @@ struct Implementation {
   void (*bezout_matrix)(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
                         const double* By, const double* Bxy, const double* u, const double* v, double* B,
                         double* poison);
+
+  // null_vector_seed on the Bezout matrices of the points (u[l], v[l]), l < count, n >= 3, formed
+  // from the plan's coefficient matrices as bezout_matrix forms them, bit for bit, but in
+  // registers and never stored: the same z, defect and residual as bezout_matrix followed by
+  // null_vector_seed, and the same poison (NaN for a lane whose B overflowed; its other outputs
+  // are then meaningless). At high degree a batch's B does not fit in L1, and reading it back was
+  // most of the seed's time. z, defect and residual are laid out as null_vector_seed's (stride).
+  void (*bezout_null_vector_seed)(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
+                                  const double* By, const double* Bxy, const double* u, const double* v, double* z,
+                                  double* defect, double* residual, double* poison);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the
