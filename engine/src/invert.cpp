@@ -180,6 +180,7 @@ Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algeb
 // The pipeline. Points of one curve go through it in batches of kBatchLanes, stage by stage, so
 // each stage is one loop over the batch (vectorizable, and timed separately for `bezinv profile`):
 //   1. form B    normalize the points; B = B0 - u0 Bx - v0 By + u0 v0 Bxy for every lane (SoA)
+//                (on the fast path from kFormedBMinDegree, formed by the seed kernel instead)
 //   2. kernel    singular values and vectors of every lane's B
 //   3. read-out  the algebraic t from the last singular vector (paper Sect. 3)
 //   4. refine    Newton from it to the nearest point, and its distance (the residual)

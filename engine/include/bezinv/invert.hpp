@@ -65,8 +65,8 @@ PointResult invert_point(const InversionPlan& plan, Point point, const InvertOpt
 
 // Seconds of work spent in each stage of the pipeline, summed over threads (`bezinv profile`).
 struct StageSeconds {
-  double form_b = 0;    // normalize the points, form B from the plan's matrices
-  double kernel = 0;    // singular values and vectors of B
+  double form_b = 0;    // normalize the points, form B from the plan's matrices (below degree 8)
+  double kernel = 0;    // singular values and vectors of B (from degree 8 forming B too: the seed's)
   double read_out = 0;  // algebraic t from the null vector
   double refine = 0;    // Newton to full precision, and the residual
   double decide = 0;    // status, and the rare paths (double point, Sylvester, nearest point)
