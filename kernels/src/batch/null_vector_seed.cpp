@@ -1,6 +1,11 @@
-// Compiles batch/null_vector-inl.hpp once per instruction set and exports null_vector_seed (L D L^T
-// without pivoting, no gap; at n = 3 the adjugate, batch/adjugate_null_vector-inl.hpp);
-// null_vector.cpp exports the pivoted kernel.
+// Compiles batch/null_vector-inl.hpp once per instruction set and exports the seed kernels (L D L^T
+// without pivoting, no gap; at n = 3 the adjugate, batch/adjugate_null_vector-inl.hpp):
+// null_vector_seed on stored matrices, and bezout_null_vector_seed on Bezout matrices it forms
+// itself (batch/matrix_source-inl.hpp). Both in this one translation unit, so that the
+// factorizations and solves they share are compiled once (two units took 62 + 72 s at -O3); the
+// file is compiled without contraction, as bezout_matrix.cpp is, so that the entries the second
+// forms are that kernel's bits (the seed's own arithmetic is written with explicit fused
+// multiply-adds, so contraction changes nothing else). null_vector.cpp exports the pivoted kernel.
 #include "batch/targets.hpp"
 // clang-format off
 #undef HWY_TARGET_INCLUDE
@@ -10,6 +15,7 @@
 #include <hwy/highway.h>
 
 #include "batch/adjugate_null_vector-inl.hpp"
+#include "batch/matrix_source-inl.hpp"
 #include "batch/null_vector-inl.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -20,6 +26,16 @@ void null_vector_seed_batch(int n, std::size_t count, std::size_t stride, const 
   if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, StoredMatrices{B}, z, defect, residual);
   dispatch_size(n, [&](auto size) {
     null_vector_fixed<decltype(size)::value, false>(count, stride, StoredMatrices{B}, z, defect, residual, nullptr);
+  });
+}
+
+void bezout_null_vector_seed_batch(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
+                                   const double* By, const double* Bxy, const double* u, const double* v, double* z,
+                                   double* defect, double* residual, double* poison) {
+  const BezoutMatrices source{B0, Bx, By, Bxy, u, v, poison};
+  if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, source, z, defect, residual);
+  dispatch_size(n, [&](auto size) {
+    null_vector_fixed<decltype(size)::value, false>(count, stride, source, z, defect, residual, nullptr);
   });
 }
 
@@ -34,6 +50,10 @@ namespace bezinv::kernels::batch {
 
 NullVectorSeedKernel null_vector_seed_kernel(std::int64_t target) {
   return for_target<NullVectorSeedKernel>(target, BEZINV_PER_TARGET(null_vector_seed_batch));
+}
+
+BezoutNullVectorSeedKernel bezout_null_vector_seed_kernel(std::int64_t target) {
+  return for_target<BezoutNullVectorSeedKernel>(target, BEZINV_PER_TARGET(bezout_null_vector_seed_batch));
 }
 
 }  // namespace bezinv::kernels::batch
