@@ -644,6 +644,26 @@ void flush_svd_queue(const InversionPlan& plan, const InvertOptions& options, St
            batch_workspace(), clock);
 }
 
+// A lane whose Bezout matrix overflowed (poison[l] not 0: an entry is not finite) is answered
+// failed, and leaves the pipeline.
+void mark_overflowing_b(const double* poison, std::size_t count, BatchWorkspace& w, PointResult* results) {
+  for (std::size_t l = 0; l < count; ++l)
+    if (w.active[l] && !(poison[l] == 0.0)) {
+      results[l].status = Status::failed;
+      results[l].reason = "point so far from the curve that the Bezout matrix overflows";
+      w.active[l] = 0;
+    }
+}
+
+// B of the points (u[k], v[k]), k < m, into lanes 0..m-1 of B (stride kBatchLanes), as stage 1
+// forms it, for lanes gathered from a batch (pass 2, the SVD path, the second-parameter check);
+// their B did not overflow (such a lane left the pipeline when its B was first formed).
+void form_compacted_b(const InversionPlan& plan, const double* u, const double* v, std::size_t m, double* B) {
+  std::array<double, kBatchLanes> poison;
+  kernels::active_implementation().bezout_matrix(plan.degree, m, kBatchLanes, plan.B0.data(), plan.Bx.data(),
+                                                 plan.By.data(), plan.Bxy.data(), u, v, B, poison.data());
+}
+
 // Runs the second-parameter check for the lanes waiting in this thread's PairCheckQueue: a lane is
 // answered on the fast path unless one of its roots refines onto the segment, within the
 // tolerance, at a parameter distinct from its t; such a lane goes to the SVD path (double points
@@ -678,7 +698,7 @@ void flush_pair_check_queue(const InversionPlan& plan, const InvertOptions& opti
   // workspace, which is free between batches; kBatchLanes of them at a time.
   const int n = plan.degree, nn = n * n;
   SvdQueue& svd = svd_queue();
-  std::array<double, kBatchLanes> u, v, poison;
+  std::array<double, kBatchLanes> u, v;
   std::array<PointResult*, kBatchLanes> target;
   for (std::size_t k = 0; k < lanes;) {
     std::size_t m = 0;
@@ -693,8 +713,7 @@ void flush_pair_check_queue(const InversionPlan& plan, const InvertOptions& opti
     }
     if (m == 0) continue;
     BatchWorkspace& w = batch_workspace();
-    kernels::active_implementation().bezout_matrix(n, m, kBatchLanes, plan.B0.data(), plan.Bx.data(), plan.By.data(),
-                                                   plan.Bxy.data(), u.data(), v.data(), w.B.data(), poison.data());
+    form_compacted_b(plan, u.data(), v.data(), m, w.B.data());
     for (std::size_t j = 0; j < m; ++j) {
       if (svd.size == kBatchLanes) flush_svd_queue(plan, options, stages);  // uses w, but not w.B
       svd.push(nn, w.B.data(), j, u[j], v[j], target[j]);
@@ -707,26 +726,6 @@ void flush_pair_check_queue(const InversionPlan& plan, const InvertOptions& opti
 void flush_queues(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages) {
   flush_pair_check_queue(plan, options, stages);
   flush_svd_queue(plan, options, stages);
-}
-
-// A lane whose Bezout matrix overflowed (poison[l] not 0: an entry is not finite) is answered
-// failed, and leaves the pipeline.
-void mark_overflowing_b(const double* poison, std::size_t count, BatchWorkspace& w, PointResult* results) {
-  for (std::size_t l = 0; l < count; ++l)
-    if (w.active[l] && !(poison[l] == 0.0)) {
-      results[l].status = Status::failed;
-      results[l].reason = "point so far from the curve that the Bezout matrix overflows";
-      w.active[l] = 0;
-    }
-}
-
-// B of the points (u[k], v[k]), k < m, into lanes 0..m-1 of B (stride kBatchLanes), as stage 1
-// forms it; for the lanes the seed's pass leaves to pass 2 or the SVD path (their B did not
-// overflow: that lane left at the seed).
-void form_compacted_b(const InversionPlan& plan, const double* u, const double* v, std::size_t m, double* B) {
-  std::array<double, kBatchLanes> poison;
-  kernels::active_implementation().bezout_matrix(plan.degree, m, kBatchLanes, plan.B0.data(), plan.Bx.data(),
-                                                 plan.By.data(), plan.Bxy.data(), u, v, B, poison.data());
 }
 
 // One batch (count <= kBatchLanes) of points of one curve through the five stages (but for the
@@ -769,7 +768,8 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
   // bezout_matrix): there a batch's B no longer fits in L1, and reading it back was most of the
   // seed's time. The rare lanes that go on to pass 2 or the SVD path get their B formed then,
   // compacted (form_compacted_b).
-  const bool formed_b = options.fast_path && options.refine && n >= kFormedBMinDegree && n <= kFastPathMaxDegree;
+  const bool fast_path = options.fast_path && options.refine && n >= 2 && n <= kFastPathMaxDegree;
+  const bool formed_b = fast_path && n >= kFormedBMinDegree;
   if (n >= 2 && !formed_b) {
     // The lower triangle only: B is symmetric and the kernels read nothing else (batch.hpp).
     // An entry that overflowed makes its lane's sum of entry * 0 NaN (inf * 0). A kernel, so that
@@ -824,7 +824,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
   // pass (the seed is spent on lanes that need the gap); within the tolerance they gain 1.7-1.9x
   // from degree 8 up, on the curve 1.1-2.3x (BENCHMARKS.md, sixth session).
   // Degree 2 keeps the full kernel alone: two solves of a 2 x 2 system, and an exact gap.
-  if (options.fast_path && options.refine && n >= 2 && n <= kFastPathMaxDegree) {
+  if (fast_path) {
     const kernels::Implementation& kernel = kernels::active_implementation();
     const bool two_passes = n >= 3;
     if (formed_b) {

@@ -56,8 +56,9 @@ HWY_NOINLINE void seed_group(D d, std::size_t stride, std::size_t first, std::si
   V b00 = entry(0, 0), b10 = entry(1, 0), b11 = entry(1, 1), b20 = entry(2, 0), b21 = entry(2, 1), b22 = entry(2, 2);
   if constexpr (GroupMatrix<Source, D>::kFormed) {  // as bezout_matrix's: NaN once an entry is not finite
     const V zero = hn::Zero(d);
-    matrix.write_poison(hn::Add(hn::Add(hn::Add(hn::Mul(b00, zero), hn::Mul(b10, zero)), hn::Add(hn::Mul(b11, zero), hn::Mul(b20, zero))),
-                                hn::Add(hn::Mul(b21, zero), hn::Mul(b22, zero))));
+    V poison = zero;
+    for (const V& e : {b00, b10, b11, b20, b21, b22}) poison = hn::Add(poison, hn::Mul(e, zero));
+    matrix.write_poison(poison);
   }
   // ||B||_F^2: the off-diagonal entries count twice.
   const V off2 = hn::MulAdd(b10, b10, hn::MulAdd(b20, b20, hn::Mul(b21, b21)));

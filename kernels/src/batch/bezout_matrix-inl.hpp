@@ -16,80 +16,48 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "batch/matrix_source-inl.hpp"
+#include "batch/wide-inl.hpp"
+
 HWY_BEFORE_NAMESPACE();
 namespace bezinv::kernels::HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
+
+// B for one group of lanes (G SIMD vectors) from `source`, the entries formed by GroupMatrix, the
+// one place that writes their expression (the seed kernel forms them there too). Whole vectors are
+// stored: rows are `stride` long, a multiple of kBatchAlignment >= the vector's lanes. poison: the
+// sum of entry * 0 (NaN once an entry is not finite, +0 otherwise, in any order of the sum), one
+// partial sum per row added to the total at the row's end: a single running sum was one
+// dependent add per entry, the kernel's critical path (BM_KernelBezoutMatrix).
+template <int G>
+HWY_INLINE void bezout_matrix_group(int n, std::size_t stride, std::size_t first, std::size_t lanes,
+                                    const BezoutMatrices& source, double* B) {
+  const wide::Tag<G> d;
+  const GroupMatrix<BezoutMatrices, wide::Tag<G>> matrix(d, source, stride, first, lanes);
+  const auto zero = wide::Zero(d);
+  auto sum = zero;
+  for (int r = 0; r < n; ++r) {
+    auto row = zero;
+    for (int c = 0; c <= r; ++c) {  // the lower triangle: the kernels read nothing else
+      const std::size_t i = static_cast<std::size_t>(r * n + c);
+      const auto e = matrix.entry(i);
+      wide::StoreU(e, d, B + i * stride + first);  // B need not be vector-aligned
+      row = wide::Add(row, wide::Mul(e, zero));
+    }
+    sum = wide::Add(sum, row);
+  }
+  matrix.write_poison(sum);
+}
 
 void bezout_matrix_batch(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
                          const double* By, const double* Bxy, const double* u, const double* v, double* B,
                          double* poison) {
-  const hn::ScalableTag<double> d;
-  constexpr std::size_t L = hn::MaxLanes(hn::ScalableTag<double>());
-  HWY_ALIGN double lanes[L];
-  // The group's points, 0 past `count` (those lanes then get B0: finite, as the layout asks).
-  auto load = [&](const double* p, std::size_t first) {
-    if (first + L <= count) return hn::LoadU(d, p + first);
-    for (std::size_t l = 0; l < L; ++l) lanes[l] = first + l < count ? p[first + l] : 0.0;
-    return hn::Load(d, lanes);
-  };
-  // One entry of the lower triangle (the kernels read nothing else) for the point (pu, pv).
-  auto entry = [&](std::size_t i, hn::Vec<decltype(d)> pu, hn::Vec<decltype(d)> pv, hn::Vec<decltype(d)> uv) {
-    return hn::Add(hn::Sub(hn::Sub(hn::Set(d, B0[i]), hn::Mul(pu, hn::Set(d, Bx[i]))), hn::Mul(pv, hn::Set(d, By[i]))),
-                   hn::Mul(uv, hn::Set(d, Bxy[i])));
-  };
-  // poison: the sum of entry * 0 (NaN once an entry is not finite, +0 otherwise, in any order of
-  // the sum). One partial sum per row, added to the total at the row's end: a single running sum
-  // was one dependent add per entry, the stage's critical path (BM_KernelBezoutMatrix).
-  const auto zero = hn::Zero(d);
+  const BezoutMatrices source{B0, Bx, By, Bxy, u, v, poison};
+  constexpr std::size_t L2 = wide::MaxLanes(wide::Tag<2>()), L1 = wide::MaxLanes(wide::Tag<1>());
   std::size_t first = 0;
-  // Two whole vectors at a time: each coefficient is broadcast once for both (the broadcasts are
-  // loads, and were two thirds of the loads).
-  for (; first + 2 * L <= count; first += 2 * L) {
-    const auto pu0 = hn::LoadU(d, u + first), pv0 = hn::LoadU(d, v + first);
-    const auto pu1 = hn::LoadU(d, u + first + L), pv1 = hn::LoadU(d, v + first + L);
-    const auto uv0 = hn::Mul(pu0, pv0), uv1 = hn::Mul(pu1, pv1);
-    auto sum0 = zero, sum1 = zero;
-    for (int r = 0; r < n; ++r) {
-      auto row0 = zero, row1 = zero;
-      for (int c = 0; c <= r; ++c) {
-        const std::size_t i = static_cast<std::size_t>(r * n + c);
-        const auto b0 = hn::Set(d, B0[i]), bx = hn::Set(d, Bx[i]), by = hn::Set(d, By[i]), bxy = hn::Set(d, Bxy[i]);
-        const auto e0 = hn::Add(hn::Sub(hn::Sub(b0, hn::Mul(pu0, bx)), hn::Mul(pv0, by)), hn::Mul(uv0, bxy));
-        const auto e1 = hn::Add(hn::Sub(hn::Sub(b0, hn::Mul(pu1, bx)), hn::Mul(pv1, by)), hn::Mul(uv1, bxy));
-        hn::StoreU(e0, d, B + i * stride + first);  // B need not be vector-aligned
-        hn::StoreU(e1, d, B + i * stride + first + L);
-        row0 = hn::Add(row0, hn::Mul(e0, zero));
-        row1 = hn::Add(row1, hn::Mul(e1, zero));
-      }
-      sum0 = hn::Add(sum0, row0);
-      sum1 = hn::Add(sum1, row1);
-    }
-    hn::StoreU(sum0, d, poison + first);
-    hn::StoreU(sum1, d, poison + first + L);
-  }
-  // The rest one vector at a time (whole vectors: rows are `stride` long, a multiple of
-  // kBatchAlignment >= L).
-  for (; first < count; first += L) {
-    const auto pu = load(u, first), pv = load(v, first);
-    const auto uv = hn::Mul(pu, pv);
-    auto sum = zero;
-    for (int r = 0; r < n; ++r) {
-      auto row = zero;
-      for (int c = 0; c <= r; ++c) {
-        const std::size_t i = static_cast<std::size_t>(r * n + c);
-        const auto e = entry(i, pu, pv, uv);
-        hn::StoreU(e, d, B + i * stride + first);
-        row = hn::Add(row, hn::Mul(e, zero));
-      }
-      sum = hn::Add(sum, row);
-    }
-    if (first + L <= count) {
-      hn::StoreU(sum, d, poison + first);
-    } else {
-      hn::Store(sum, d, lanes);
-      std::copy_n(lanes, count - first, poison + first);
-    }
-  }
+  // Two vectors at a time where the batch has them whole: each coefficient is broadcast once for
+  // both (the broadcasts are loads, and were two thirds of the loads); then one at a time.
+  for (; first + L2 <= count; first += L2) bezout_matrix_group<2>(n, stride, first, L2, source, B);
+  for (; first < count; first += L1) bezout_matrix_group<1>(n, stride, first, std::min(L1, count - first), source, B);
 }
 
 }  // namespace bezinv::kernels::HWY_NAMESPACE

@@ -25,10 +25,12 @@ struct StoredMatrices {
 };
 
 // The Bezout matrices of the points (u[l], v[l]) from a plan's coefficient matrices (n x n,
-// row-major; engine/include/bezinv/plan.hpp), entry i formed at each use exactly as
-// bezout_matrix forms it: ((B0[i] - u Bx[i]) - v By[i]) + (u v) Bxy[i], in that order and without
-// fused multiply-add (the translation units that form them are compiled with -ffp-contract=off),
-// so the same bits as that kernel's B. The kernel also writes poison[l] as bezout_matrix does.
+// row-major; engine/include/bezinv/plan.hpp), entry i formed at each use by
+// GroupMatrix<BezoutMatrices>::entry, the one expression both bezout_matrix (which stores it) and
+// the seed (which does not) use: ((B0[i] - u Bx[i]) - v By[i]) + (u v) Bxy[i], in that order and
+// without fused multiply-add (their translation units are compiled with -ffp-contract=off), so
+// the engine's bits on every instruction set. The kernel writes poison[l] = the sum of the lane's
+// entries times 0.
 // Why: at high degree a batch's B no longer fits in L1 (n = 20: 107 KB for 64 lanes), and the
 // seed kernel spent most of its time reading it back from L2 (perf), after the form-B stage had
 // spent its own time storing it.
