@@ -128,12 +128,12 @@ void BM_KernelBezoutSeed(benchmark::State& state, const Implementation* impl, in
   std::mt19937_64 rng(11 + n);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const std::size_t nn = static_cast<std::size_t>(n) * n, stride = batch_stride(kBatch);
-  std::vector<double> B0(nn), Bx(nn), By(nn), Bxy(nn), u(kDistinct), v(kDistinct);
+  std::vector<double> B0(nn), Bx(nn), By(nn), u(kDistinct), v(kDistinct);
   for (int r = 0; r < n; ++r)
     for (int c = 0; c <= r; ++c) {
       const double b0 = unit(rng), bx = unit(rng), by = unit(rng);
       for (const std::size_t i : {static_cast<std::size_t>(r * n + c), static_cast<std::size_t>(c * n + r)})
-        B0[i] = b0, Bx[i] = bx, By[i] = by, Bxy[i] = 0.0;  // a common denominator
+        B0[i] = b0, Bx[i] = bx, By[i] = by;  // a common denominator: Bxy null, as the engine passes it
     }
   for (std::size_t l = 0; l < kDistinct; ++l) u[l] = unit(rng), v[l] = unit(rng);
   std::vector<double> B(nn * stride), z(static_cast<std::size_t>(n) * stride), defect(kBatch), residual(kBatch),
@@ -141,10 +141,10 @@ void BM_KernelBezoutSeed(benchmark::State& state, const Implementation* impl, in
   std::size_t first = 0;
   for (auto _ : state) {
     if (formed) {
-      impl->bezout_null_vector_seed(n, kBatch, stride, B0.data(), Bx.data(), By.data(), Bxy.data(), u.data() + first,
+      impl->bezout_null_vector_seed(n, kBatch, stride, B0.data(), Bx.data(), By.data(), nullptr, u.data() + first,
                                     v.data() + first, z.data(), defect.data(), residual.data(), poison.data());
     } else {
-      impl->bezout_matrix(n, kBatch, stride, B0.data(), Bx.data(), By.data(), Bxy.data(), u.data() + first,
+      impl->bezout_matrix(n, kBatch, stride, B0.data(), Bx.data(), By.data(), nullptr, u.data() + first,
                           v.data() + first, B.data(), poison.data());
       impl->null_vector_seed(n, kBatch, stride, B.data(), z.data(), defect.data(), residual.data());
     }

@@ -179,7 +179,8 @@ Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algeb
 // ---------------------------------------------------------------------------------------------
 // The pipeline. Points of one curve go through it in batches of kBatchLanes, stage by stage, so
 // each stage is one loop over the batch (vectorizable, and timed separately for `bezinv profile`):
-//   1. form B    normalize the points; B = B0 - u0 Bx - v0 By + u0 v0 Bxy for every lane (SoA)
+//   1. form B    normalize the points; B = B0 - u0 Bx - v0 By (+ u0 v0 Bxy for separate
+//                denominators) for every lane (SoA)
 //                (on the fast path from kFormedBMinDegree, formed by the seed kernel instead)
 //   2. kernel    singular values and vectors of every lane's B
 //   3. read-out  the algebraic t from the last singular vector (paper Sect. 3)
@@ -655,13 +656,19 @@ void mark_overflowing_b(const double* poison, std::size_t count, BatchWorkspace&
     }
 }
 
+// The kernels' Bxy: null for one denominator, where Bxy = Bez(W, W) = 0 and B is affine in (u, v),
+// so that they skip the term (a third of forming B) and give bezout_at's bits, which skips it too.
+const double* bilinear_coefficients(const InversionPlan& plan) {
+  return plan.common_denominator ? nullptr : plan.Bxy.data();
+}
+
 // B of the points (u[k], v[k]), k < m, into lanes 0..m-1 of B (stride kBatchLanes), as stage 1
 // forms it, for lanes gathered from a batch (pass 2, the SVD path, the second-parameter check);
 // their B did not overflow (such a lane left the pipeline when its B was first formed).
 void form_compacted_b(const InversionPlan& plan, const double* u, const double* v, std::size_t m, double* B) {
   std::array<double, kBatchLanes> poison;
   kernels::active_implementation().bezout_matrix(plan.degree, m, kBatchLanes, plan.B0.data(), plan.Bx.data(),
-                                                 plan.By.data(), plan.Bxy.data(), u, v, B, poison.data());
+                                                 plan.By.data(), bilinear_coefficients(plan), u, v, B, poison.data());
 }
 
 // Runs the second-parameter check for the lanes waiting in this thread's PairCheckQueue: a lane is
@@ -777,7 +784,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     // went 2x faster at degree 8 and 3x at degree 15 (bezinv profile, 1 thread, AVX-512).
     std::array<double, kBatchLanes> poison;
     kernels::active_implementation().bezout_matrix(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
-                                                   plan.Bxy.data(), w.u.data(), w.v.data(), w.B.data(),
+                                                   bilinear_coefficients(plan), w.u.data(), w.v.data(), w.B.data(),
                                                    poison.data());
     mark_overflowing_b(poison.data(), count, w, results);
     for (std::size_t l = 0; l < count; ++l) {
@@ -830,7 +837,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     if (formed_b) {
       std::array<double, kBatchLanes> poison;
       kernel.bezout_null_vector_seed(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
-                                     plan.Bxy.data(), w.u.data(), w.v.data(), w.z.data(), w.defect.data(),
+                                     bilinear_coefficients(plan), w.u.data(), w.v.data(), w.z.data(), w.defect.data(),
                                      w.estimate.data(), poison.data());
       mark_overflowing_b(poison.data(), count, w, results);
     } else if (two_passes) {

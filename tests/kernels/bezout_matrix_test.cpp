@@ -2,10 +2,11 @@
 // each entry against the exact value of B0 - u Bx - v By + u v Bxy (GMP) within the rounding of its
 // four products and three sums, and bit for bit against the others and the engine's expression
 // (the order of the operations is the contract that keeps the engine's answers the same on every
-// instruction set).
+// instruction set). With Bxy null (one denominator) the last term is absent, as in bezout_at.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -20,8 +21,10 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kUnset = -7.0;  // what the upper triangle and lanes past the last vector keep
 
-TEST(BatchBezoutMatrix, EntriesAreTheAffineCombinationInEveryImplementation) {
-  std::mt19937_64 rng(21);
+// bilinear: separate denominators (Bxy given, some of its entries 0); else one denominator (Bxy
+// null: B is affine in (u, v), the term absent).
+void expect_entries_in_every_implementation(bool bilinear) {
+  std::mt19937_64 rng(bilinear ? 21 : 22);
   std::uniform_real_distribution<double> coefficient(-3.0, 3.0), coordinate(-2.0, 2.0);
   std::vector<double> reference;  // the first implementation's entries, for the others
   for (int n = 1; n <= kMaxBatchSize; ++n) {
@@ -32,15 +35,15 @@ TEST(BatchBezoutMatrix, EntriesAreTheAffineCombinationInEveryImplementation) {
         B0[i] = coefficient(rng);
         Bx[i] = coefficient(rng);
         By[i] = coefficient(rng);
-        Bxy[i] = i % 3 ? coefficient(rng) : 0.0;  // 0 for a common denominator
+        Bxy[i] = bilinear && i % 3 ? coefficient(rng) : 0.0;  // 0 as a common denominator's entries
       }
       for (std::size_t l = 0; l < count; ++l) u[l] = coordinate(rng), v[l] = coordinate(rng);
       bool first = true;
       for (const Implementation* implementation : available_implementations()) {
         SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " count=" + std::to_string(count));
         std::vector<double> B(nn * stride, kUnset), poison(count, kUnset);
-        implementation->bezout_matrix(n, count, stride, B0.data(), Bx.data(), By.data(), Bxy.data(), u.data(),
-                                      v.data(), B.data(), poison.data());
+        implementation->bezout_matrix(n, count, stride, B0.data(), Bx.data(), By.data(),
+                                      bilinear ? Bxy.data() : nullptr, u.data(), v.data(), B.data(), poison.data());
         for (std::size_t l = 0; l < count; ++l) {
           EXPECT_EQ(poison[l], 0.0) << "lane " << l;
           for (int r = 0; r < n; ++r)
@@ -57,10 +60,13 @@ TEST(BatchBezoutMatrix, EntriesAreTheAffineCombinationInEveryImplementation) {
               const double size = std::abs(B0[i]) + std::abs(u[l] * Bx[i]) + std::abs(v[l] * By[i]) +
                                   std::abs(u[l] * v[l] * Bxy[i]);
               EXPECT_LE(std::abs(got - exact.get_d()), 4 * kEps * size) << "(" << r << ", " << c << ") lane " << l;
-              // The engine's expression, evaluated here in the same order (no FMA on this build's
-              // baseline target).
-              const double engine = B0[i] - u[l] * Bx[i] - v[l] * By[i] + (u[l] * v[l]) * Bxy[i];
-              EXPECT_EQ(got, engine) << "(" << r << ", " << c << ") lane " << l;
+              // The engine's expression (bezout_at), evaluated here in the same order (no FMA on
+              // this build's baseline target). Compared as bits: the affine form must not add the
+              // zero term, which would turn an entry -0 into +0.
+              const double affine = B0[i] - u[l] * Bx[i] - v[l] * By[i];
+              const double engine = bilinear ? affine + (u[l] * v[l]) * Bxy[i] : affine;
+              EXPECT_EQ(std::memcmp(&got, &engine, sizeof got), 0)
+                  << "(" << r << ", " << c << ") lane " << l << ": " << got << " vs " << engine;
             }
         }
         // Padding lanes of the last vector hold finite values (B0 here); none past the stride.
@@ -73,6 +79,34 @@ TEST(BatchBezoutMatrix, EntriesAreTheAffineCombinationInEveryImplementation) {
         EXPECT_EQ(lanes, reference) << "differs from " << available_implementations()[0]->name;
         first = false;
       }
+    }
+  }
+}
+
+TEST(BatchBezoutMatrix, EntriesAreTheBilinearCombinationInEveryImplementation) {
+  expect_entries_in_every_implementation(true);
+}
+
+TEST(BatchBezoutMatrix, WithOneDenominatorEntriesAreTheAffineCombinationInEveryImplementation) {
+  expect_entries_in_every_implementation(false);
+}
+
+// -0 entries: B0 = -0 and u Bx = v By = +0 give (-0 - 0) - 0 = -0, which adding (u v) Bxy = +0
+// would make +0; bezout_at leaves it -0 with one denominator, and so must the kernels (a pivot's
+// sign decides which way the seed's guard moves it).
+TEST(BatchBezoutMatrix, WithOneDenominatorANegativeZeroStaysNegative) {
+  for (const Implementation* implementation : available_implementations()) {
+    SCOPED_TRACE(implementation->name);
+    const int n = 2;
+    const std::size_t count = 9, stride = batch_stride(count);
+    const std::vector<double> B0(4, -0.0), Bx(4, 1.0), By(4, 1.0);
+    const std::vector<double> u(count, 0.0), v(count, 0.0);
+    std::vector<double> B(4 * stride, kUnset), poison(count);
+    implementation->bezout_matrix(n, count, stride, B0.data(), Bx.data(), By.data(), nullptr, u.data(), v.data(),
+                                  B.data(), poison.data());
+    for (std::size_t l = 0; l < count; ++l) {
+      EXPECT_EQ(B[l], 0.0);
+      EXPECT_TRUE(std::signbit(B[l])) << "lane " << l;
     }
   }
 }

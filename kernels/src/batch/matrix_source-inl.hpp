@@ -27,17 +27,23 @@ struct StoredMatrices {
 // The Bezout matrices of the points (u[l], v[l]) from a plan's coefficient matrices (n x n,
 // row-major; engine/include/bezinv/plan.hpp), entry i formed at each use by
 // GroupMatrix<BezoutMatrices>::entry, the one expression both bezout_matrix (which stores it) and
-// the seed (which does not) use: ((B0[i] - u Bx[i]) - v By[i]) + (u v) Bxy[i], in that order and
-// without fused multiply-add (their translation units are compiled with -ffp-contract=off), so
-// the engine's bits on every instruction set. The kernel writes poison[l] = the sum of the lane's
-// entries times 0.
-// Why: at high degree a batch's B no longer fits in L1 (n = 20: 107 KB for 64 lanes), and the
-// seed kernel spent most of its time reading it back from L2 (perf), after the form-B stage had
-// spent its own time storing it.
+// the seed (which does not) use, in this order and without fused multiply-add (their translation
+// units are compiled with -ffp-contract=off), so the engine's bits (bezout_at) on every
+// instruction set:
+//   kBilinear (separate denominators)  ((B0[i] - u Bx[i]) - v By[i]) + (u v) Bxy[i]
+//   affine (one denominator W)          (B0[i] - u Bx[i]) - v By[i]
+// With one denominator Bxy = Bez(W, W) = 0, so the affine form drops a multiplication, an
+// addition and a broadcast load per entry that would add 0: a third of forming B, which the seed
+// does twice per lane (measured: the formed seed 1.1-1.2x at n = 8-20, BENCHMARKS.md).
+// The kernel writes poison[l] = the sum of the lane's entries times 0.
+// Why form B at all: at high degree a batch's B no longer fits in L1 (n = 20: 107 KB for 64
+// lanes), and the seed kernel spent most of its time reading it back from L2 (perf), after the
+// form-B stage had spent its own time storing it.
+template <bool kBilinear>
 struct BezoutMatrices {
-  const double *B0, *Bx, *By, *Bxy;
-  const double *u, *v;  // `count` points
-  double* poison;       // out: `count` entries
+  const double *B0, *Bx, *By, *Bxy;  // Bxy unused (may be null) unless kBilinear
+  const double *u, *v;               // `count` points
+  double* poison;                    // out: `count` entries
 };
 
 // One group's view of a source: entry(i) is lanes first .. first + MaxLanes(d) - 1 of entry i.
@@ -59,22 +65,24 @@ class GroupMatrix<StoredMatrices, D> {
   std::size_t stride_;
 };
 
-template <class D>
-class GroupMatrix<BezoutMatrices, D> {
+template <bool kBilinear, class D>
+class GroupMatrix<BezoutMatrices<kBilinear>, D> {
  public:
   static constexpr bool kFormed = true;
   static constexpr std::size_t L = wide::MaxLanes(D());
   // Lanes past `lanes` get the point (0, 0), so B0: finite, as the batch layout's padding.
-  GroupMatrix(D d, const BezoutMatrices& source, std::size_t, std::size_t first, std::size_t lanes)
+  GroupMatrix(D d, const BezoutMatrices<kBilinear>& source, std::size_t, std::size_t first, std::size_t lanes)
       : d_(d), source_(source), first_(first), lanes_(lanes) {
     u_ = point(source.u);
     v_ = point(source.v);
-    uv_ = wide::Mul(u_, v_);
+    if constexpr (kBilinear) uv_ = wide::Mul(u_, v_);
   }
   HWY_INLINE wide::Vec<D> entry(std::size_t i) const {
-    return wide::Add(wide::Sub(wide::Sub(wide::Set(d_, source_.B0[i]), wide::Mul(u_, wide::Set(d_, source_.Bx[i]))),
-                               wide::Mul(v_, wide::Set(d_, source_.By[i]))),
-                     wide::Mul(uv_, wide::Set(d_, source_.Bxy[i])));
+    const auto affine =
+        wide::Sub(wide::Sub(wide::Set(d_, source_.B0[i]), wide::Mul(u_, wide::Set(d_, source_.Bx[i]))),
+                  wide::Mul(v_, wide::Set(d_, source_.By[i])));
+    if constexpr (!kBilinear) return affine;
+    else return wide::Add(affine, wide::Mul(uv_, wide::Set(d_, source_.Bxy[i])));
   }
   // The sum of the lane's entries times 0, as the caller accumulated it.
   void write_poison(wide::Vec<D> poison) const {
@@ -92,9 +100,9 @@ class GroupMatrix<BezoutMatrices, D> {
     return wide::Load(d_, padded);
   }
   D d_;
-  BezoutMatrices source_;
+  BezoutMatrices<kBilinear> source_;
   std::size_t first_, lanes_;
-  wide::Vec<D> u_, v_, uv_;
+  wide::Vec<D> u_, v_, uv_;  // uv_ only where kBilinear
 };
 
 }  // namespace bezinv::kernels::HWY_NAMESPACE

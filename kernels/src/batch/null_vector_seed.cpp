@@ -32,11 +32,15 @@ void null_vector_seed_batch(int n, std::size_t count, std::size_t stride, const 
 void bezout_null_vector_seed_batch(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
                                    const double* By, const double* Bxy, const double* u, const double* v, double* z,
                                    double* defect, double* residual, double* poison) {
-  const BezoutMatrices source{B0, Bx, By, Bxy, u, v, poison};
-  if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, source, z, defect, residual);
-  dispatch_size(n, [&](auto size) {
-    null_vector_fixed<decltype(size)::value, false>(count, stride, source, z, defect, residual, nullptr);
-  });
+  // One denominator (Bxy null): B is affine in (u, v), see matrix_source-inl.hpp.
+  auto seed = [&](const auto& source) {
+    if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, source, z, defect, residual);
+    dispatch_size(n, [&](auto size) {
+      null_vector_fixed<decltype(size)::value, false>(count, stride, source, z, defect, residual, nullptr);
+    });
+  };
+  if (Bxy == nullptr) return seed(BezoutMatrices<false>{B0, Bx, By, Bxy, u, v, poison});
+  seed(BezoutMatrices<true>{B0, Bx, By, Bxy, u, v, poison});
 }
 
 }  // namespace bezinv::kernels::HWY_NAMESPACE

@@ -109,7 +109,9 @@ struct Implementation {
   // The Bezout matrix of every lane's point (u[l], v[l]) from the plan's coefficient matrices
   // (n x n, row-major; engine/include/bezinv/plan.hpp): entry (r, c), r >= c, of lane l is
   //     B[(r * n + c) * stride + l] = ((B0 - u Bx) - v By) + (u v) Bxy   at index r * n + c,
-  // in that order and without fused multiply-add, so every implementation gives the engine's bits.
+  // or (B0 - u Bx) - v By when Bxy is null (one denominator W: Bxy = Bez(W, W) = 0, and B is
+  // affine in (u, v)), in that order and without fused multiply-add, so every implementation
+  // gives the engine's bits (bezout_at).
   // The upper triangle is not written (the kernels read only r >= c). poison[l] is the sum of the
   // lane's entries times 0: 0, or NaN when an entry overflowed. The padding lanes of the last SIMD
   // vector get B0 (finite, as this layout asks); u, v and poison are read and written for l < count.
