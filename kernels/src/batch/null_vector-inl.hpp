@@ -169,7 +169,8 @@ struct LaneLu {
 };
 
 // B = L D L^T without pivoting, every lane alike (the seed kernel, null_vector_seed): unit L below
-// the diagonal, D on it, from B's lower triangle (the upper is never read). n^3 / 6 multiply-adds
+// the diagonal, D on it, from B's lower triangle (B's upper is never read; the factorization keeps
+// its undivided multipliers there). n^3 / 6 multiply-adds
 // against LU's n^3 / 3, and no per-lane row swaps, which took half of the LU's time (the
 // factorization alone, measured: 2.4x faster at n = 8, 3x at n = 15).
 // Why no pivoting is good enough here. Without pivoting L D L^T = B + E with ||E|| ~ eps times the
@@ -186,56 +187,99 @@ template <int N, class D>
 struct LaneLdl {
   static constexpr std::size_t L = hn::MaxLanes(D());
   static constexpr bool kLowerOnly = true;  // reads B's lower triangle only
-  HWY_ALIGN double lu[N * N * L];           // unit L below the diagonal, D on it; upper part unused
+  HWY_ALIGN double lu[N * N * L];           // unit L below the diagonal; above it, L D undivided
   HWY_ALIGN double inv_pivot[N * L];        // 1 / d_k
 
   double* at(int r, int c) { return lu + (r * N + c) * L; }
 
-  // Two steps at a time: column k+1 takes step k's update first (it holds step k+1's pivot and
-  // multipliers), then the rest of the trailing triangle takes both steps' updates in one pass,
-  // a_ij <- (a_ij - l_ik c_jk) - l_i,k+1 c_j,k+1 (c = l d, kept undivided), the very operations of
-  // one step after the other in the same order (so the same bits), at one load and one store of
-  // a_ij instead of two of each. Measured (BM_KernelNullVectorSeed, AVX-512, best of 5 alternating
-  // runs): 1.02-1.04x at n = 5-8, 1.07-1.14x at n = 15-24; four steps at a time (the block's
-  // width a loop bound) was slower, 0.85-0.87x at n = 5-8 and 1.04-1.07x above.
+  // Crout order: column j of L D is b_ij - sum_{k<j} l_ik c_jk (i >= j), c_jk = l_jk d_k the
+  // undivided multiplier, kept in the upper triangle at (k, j) where the solves never look. Each
+  // entry takes the updates of the steps k in ascending order, as in the right-looking order
+  // (a_ij <- a_ij - l_ik c_jk at step k) this replaced: the same operations, so the same bits
+  // (checked on every size and implementation against the earlier kernel's output).
+  // Why Crout: the right-looking update loaded and stored every entry of the trailing triangle
+  // at every step (3 loads and a store per 2 multiply-adds, two steps at a time); here a tile of
+  // kTileRows rows x 2 columns stays in registers for all its k (6 loads per 8 multiply-adds at
+  // 4 rows, one store per entry), and the wide group's G vectors interleave their dependency
+  // chains (the pivots' divisions, each diagonal entry's sum). BM_KernelBezoutSeed_formed, AVX-512, median of 5
+  // alternating runs: 1.0x at n = 5, 1.17x at 8, 1.11x at 20, 1.19x at 24 (BENCHMARKS.md).
+  static constexpr int kTileRows = D::kVectors >= 4 ? 2 : 4;  // 4 vectors: 2 rows, or spills
+
   void factor(D d) {
-    HWY_ALIGN double column[N * L];   // column k before its division by d_k
-    HWY_ALIGN double column2[N * L];  // column k + 1 likewise
-    int k = 0;
-    for (; k + 1 < N; k += 2) {
-      const auto inv = pivot_inverse(d, k);
-      for (int i = k + 1; i < N; ++i) {
-        const auto c = hn::Load(d, at(i, k));
-        hn::Store(c, d, column + i * L);
-        hn::Store(hn::Mul(c, inv), d, at(i, k));
-      }
-      // Step k on column k + 1 (rows k+1 and below).
-      const auto c_next = hn::Load(d, column + (k + 1) * L);
-      for (int i = k + 1; i < N; ++i)
-        hn::Store(hn::NegMulAdd(hn::Load(d, at(i, k)), c_next, hn::Load(d, at(i, k + 1))), d, at(i, k + 1));
-      const auto inv2 = pivot_inverse(d, k + 1);
-      for (int i = k + 2; i < N; ++i) {
-        const auto c = hn::Load(d, at(i, k + 1));
-        hn::Store(c, d, column2 + i * L);
-        hn::Store(hn::Mul(c, inv2), d, at(i, k + 1));
-      }
-      // Both steps on the rest: rows and columns k+2 and beyond.
-      for (int i = k + 2; i < N; ++i) {
-        const auto l = hn::Load(d, at(i, k)), l2 = hn::Load(d, at(i, k + 1));
-        for (int j = k + 2; j <= i; ++j) {
-          const auto once = hn::NegMulAdd(l, hn::Load(d, column + j * L), hn::Load(d, at(i, j)));
-          hn::Store(hn::NegMulAdd(l2, hn::Load(d, column2 + j * L), once), d, at(i, j));
-        }
-      }
-    }
-    if (k < N) pivot_inverse(d, k);  // the last pivot (odd N): nothing below it
+    int j = 0;
+    for (; j + 1 < N; j += 2) column_pair<true>(d, j);
+    if (j < N) column_pair<false>(d, j);  // odd N: the last column alone
   }
 
-  // 1 / d_k, d_k guarded as LaneLu's pivots are (below eps ||B|| -> +-eps); also stored in
-  // inv_pivot.
-  HWY_INLINE hn::Vec<D> pivot_inverse(D d, int k) {
+  // Columns j and j + 1 (kPair; else column j alone): the diagonal rows first (row j gives d_j;
+  // row j + 1 gives c_{j+1,j}, then, after step j, d_{j+1}), then the rows below in tiles.
+  template <bool kPair>
+  HWY_INLINE void column_pair(D d, int j) {
+    constexpr int kHead = kPair ? 2 : 1;
+    hn::Vec<D> a[kHead][2];
+    tile_sums<kHead, kPair, true>(d, j, j, a);
+    const auto inv = pivot_inverse(d, j, a[0][0]);
+    hn::Vec<D> c_next = hn::Zero(d), inv_next = hn::Zero(d);
+    if constexpr (kPair) {
+      c_next = a[1][0];
+      hn::Store(c_next, d, at(j, j + 1));
+      const auto l = hn::Mul(c_next, inv);
+      hn::Store(l, d, at(j + 1, j));
+      inv_next = pivot_inverse(d, j + 1, hn::NegMulAdd(l, c_next, a[1][1]));
+    }
+    int i0 = j + kHead;
+    for (; i0 + kTileRows <= N; i0 += kTileRows) tile<kTileRows, kPair>(d, i0, j, inv, c_next, inv_next);
+    // The last rows one at a time: tiles of every height in between cost compile time (CI's
+    // budget) for no measured speed.
+    for (; i0 < N; ++i0) tile<1, kPair>(d, i0, j, inv, c_next, inv_next);
+  }
+
+  // Rows i0 .. i0 + R - 1 of columns j (and j + 1), every step k < j applied. kHead: the rows
+  // j and j + 1, whose (j, j + 1) is not in the lower triangle (0 here, and unused).
+  template <int R, bool kPair, bool kHead = false>
+  HWY_INLINE void tile_sums(D d, int i0, int j, hn::Vec<D> (&a)[R][2]) {
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) {
+      a[r][0] = hn::Load(d, at(i0 + r, j));
+      if constexpr (kPair) a[r][1] = kHead && r == 0 ? hn::Zero(d) : hn::Load(d, at(i0 + r, j + 1));
+    }
+    for (int k = 0; k < j; ++k) {
+      const auto c = hn::Load(d, at(k, j));
+      hn::Vec<D> c2;
+      if constexpr (kPair) c2 = hn::Load(d, at(k, j + 1));
+#pragma GCC unroll 8
+      for (int r = 0; r < R; ++r) {
+        const auto l = hn::Load(d, at(i0 + r, k));
+        a[r][0] = hn::NegMulAdd(l, c, a[r][0]);
+        if constexpr (kPair) a[r][1] = hn::NegMulAdd(l, c2, a[r][1]);
+      }
+    }
+  }
+
+  // Rows i0 .. i0 + R - 1, all below the pair's diagonal rows: their sums, then column j's c and
+  // l, step j on column j + 1, and its c and l.
+  template <int R, bool kPair>
+  HWY_INLINE void tile(D d, int i0, int j, hn::Vec<D> inv, hn::Vec<D> c_next, hn::Vec<D> inv_next) {
+    hn::Vec<D> a[R][2];
+    tile_sums<R, kPair>(d, i0, j, a);
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) {
+      const int i = i0 + r;
+      hn::Store(a[r][0], d, at(j, i));
+      const auto l = hn::Mul(a[r][0], inv);
+      hn::Store(l, d, at(i, j));
+      if constexpr (kPair) {
+        const auto c = hn::NegMulAdd(l, c_next, a[r][1]);
+        hn::Store(c, d, at(j + 1, i));
+        hn::Store(hn::Mul(c, inv_next), d, at(i, j + 1));
+      }
+    }
+  }
+
+  // 1 / d_k for the pivot d_k, guarded as LaneLu's pivots are (below eps ||B|| -> +-eps); also
+  // stored in inv_pivot.
+  HWY_INLINE hn::Vec<D> pivot_inverse(D d, int k, hn::Vec<D> pivot) {
     const auto tiny = hn::Set(d, batch::kEpsilon);
-    auto pivot = hn::Load(d, at(k, k));
     pivot = hn::IfThenElse(hn::Le(hn::Abs(pivot), tiny), hn::CopySign(tiny, pivot), pivot);
     const auto inv = hn::Div(hn::Set(d, 1.0), pivot);
     hn::Store(inv, d, inv_pivot + k * L);
