@@ -172,6 +172,7 @@ void BM_KernelEigenSelfAdjoint(benchmark::State& state) {
 }
 
 constexpr int kSizes[] = {3, 5, 8, 10, 12, 15, 20, 24};
+constexpr int kSeedSizes[] = {3, 4, 5, 6, 7, 8, 9, 10, 12, 15, 20, 24};
 
 int register_kernels() {
   for (const Implementation* impl : available_implementations())
@@ -189,6 +190,15 @@ int register_kernels() {
       benchmark::RegisterBenchmark(seed.c_str(), BM_KernelNullVectorSeed, impl, n);
       const std::string bezout = std::string("BM_KernelBezoutMatrix").append(suffix);
       benchmark::RegisterBenchmark(bezout.c_str(), BM_KernelBezoutMatrix, impl, n);
+    }
+  // The seed, B stored or formed, also at every size around the engine's switch between them
+  // (kFormedBMinDegree in engine/src/invert.cpp).
+  for (const Implementation* impl : available_implementations())
+    for (int n : kSeedSizes) {
+      std::string suffix = "/";
+      suffix += impl->name;
+      suffix += "/n:";
+      suffix += std::to_string(n);
       const std::string stored = std::string("BM_KernelBezoutSeed_stored").append(suffix);
       const std::string formed = std::string("BM_KernelBezoutSeed_formed").append(suffix);
       benchmark::RegisterBenchmark(stored.c_str(), BM_KernelBezoutSeed, impl, n, false);

@@ -67,7 +67,10 @@ constexpr std::size_t kBatchLanes = 64;
 // (invert_batch_lanes). Measured, BM_KernelBezoutSeed_formed against _stored (points/s, 3 runs):
 // AVX-512 0.8x at n = 5, 1.13x at 8, 1.3x at 10-12, 1.25-1.35x at 15-24; AVX2 0.9x at 8, 1.0x at
 // 10, 1.1x at 12, 1.15-1.6x at 15-24. Below, B fits in L1 and forming it twice (factorization and
-// residual) costs more than reading it.
+// residual) costs more than reading it. Since the affine form (one denominator) made forming
+// cheaper, the kernels alone favour forming from n = 6 on AVX-512 (1.2x at 6 and 7; AVX2 even),
+// but the pipeline did not follow: bezinv profile, 1 thread, 3 alternating runs with the switch
+// at 6, 0.91x at n = 6 and 0.93-1.0x at 7 for one denominator, 1.0x for separate ones.
 constexpr int kFormedBMinDegree = 8;
 
 // p = X_num - u0 X_den and q = Y_num - v0 Y_den at the plan's degree.
