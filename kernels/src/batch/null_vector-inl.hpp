@@ -205,19 +205,21 @@ struct LaneLdl {
   // alternating runs: 1.0x at n = 5, 1.17x at 8, 1.11x at 20, 1.19x at 24 (BENCHMARKS.md).
   static constexpr int kTileRows = D::kVectors >= 4 ? 2 : 4;  // 4 vectors: 2 rows, or spills
 
-  void factor(D d) {
+  // B = L D L^T for B = scale times the lower triangle stored in lu (each entry is loaded once,
+  // at the start of its tile, and scaled there).
+  void factor(D d, hn::Vec<D> scale) {
     int j = 0;
-    for (; j + 1 < N; j += 2) column_pair<true>(d, j);
-    if (j < N) column_pair<false>(d, j);  // odd N: the last column alone
+    for (; j + 1 < N; j += 2) column_pair<true>(d, j, scale);
+    if (j < N) column_pair<false>(d, j, scale);  // odd N: the last column alone
   }
 
   // Columns j and j + 1 (kPair; else column j alone): the diagonal rows first (row j gives d_j;
   // row j + 1 gives c_{j+1,j}, then, after step j, d_{j+1}), then the rows below in tiles.
   template <bool kPair>
-  HWY_INLINE void column_pair(D d, int j) {
+  HWY_INLINE void column_pair(D d, int j, hn::Vec<D> scale) {
     constexpr int kHead = kPair ? 2 : 1;
     hn::Vec<D> a[kHead][2];
-    tile_sums<kHead, kPair, true>(d, j, j, a);
+    tile_sums<kHead, kPair, true>(d, j, j, scale, a);
     const auto inv = pivot_inverse(d, j, a[0][0]);
     hn::Vec<D> c_next = hn::Zero(d), inv_next = hn::Zero(d);
     if constexpr (kPair) {
@@ -228,20 +230,22 @@ struct LaneLdl {
       inv_next = pivot_inverse(d, j + 1, hn::NegMulAdd(l, c_next, a[1][1]));
     }
     int i0 = j + kHead;
-    for (; i0 + kTileRows <= N; i0 += kTileRows) tile<kTileRows, kPair>(d, i0, j, inv, c_next, inv_next);
+    for (; i0 + kTileRows <= N; i0 += kTileRows) tile<kTileRows, kPair>(d, i0, j, scale, inv, c_next, inv_next);
     // The last rows one at a time: tiles of every height in between cost compile time (CI's
     // budget) for no measured speed.
-    for (; i0 < N; ++i0) tile<1, kPair>(d, i0, j, inv, c_next, inv_next);
+    for (; i0 < N; ++i0) tile<1, kPair>(d, i0, j, scale, inv, c_next, inv_next);
   }
 
-  // Rows i0 .. i0 + R - 1 of columns j (and j + 1), every step k < j applied. kHead: the rows
-  // j and j + 1, whose (j, j + 1) is not in the lower triangle (0 here, and unused).
+  // Rows i0 .. i0 + R - 1 of columns j (and j + 1): the stored entries times scale, every step
+  // k < j applied. kHead: the rows j and j + 1, whose (j, j + 1) is not in the lower triangle (0
+  // here, and unused).
   template <int R, bool kPair, bool kHead = false>
-  HWY_INLINE void tile_sums(D d, int i0, int j, hn::Vec<D> (&a)[R][2]) {
+  HWY_INLINE void tile_sums(D d, int i0, int j, hn::Vec<D> scale, hn::Vec<D> (&a)[R][2]) {
 #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) {
-      a[r][0] = hn::Load(d, at(i0 + r, j));
-      if constexpr (kPair) a[r][1] = kHead && r == 0 ? hn::Zero(d) : hn::Load(d, at(i0 + r, j + 1));
+      a[r][0] = hn::Mul(hn::Load(d, at(i0 + r, j)), scale);
+      if constexpr (kPair)
+        a[r][1] = kHead && r == 0 ? hn::Zero(d) : hn::Mul(hn::Load(d, at(i0 + r, j + 1)), scale);
     }
     for (int k = 0; k < j; ++k) {
       const auto c = hn::Load(d, at(k, j));
@@ -259,9 +263,10 @@ struct LaneLdl {
   // Rows i0 .. i0 + R - 1, all below the pair's diagonal rows: their sums, then column j's c and
   // l, step j on column j + 1, and its c and l.
   template <int R, bool kPair>
-  HWY_INLINE void tile(D d, int i0, int j, hn::Vec<D> inv, hn::Vec<D> c_next, hn::Vec<D> inv_next) {
+  HWY_INLINE void tile(D d, int i0, int j, hn::Vec<D> scale, hn::Vec<D> inv, hn::Vec<D> c_next,
+                       hn::Vec<D> inv_next) {
     hn::Vec<D> a[R][2];
-    tile_sums<R, kPair>(d, i0, j, a);
+    tile_sums<R, kPair>(d, i0, j, scale, a);
 #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) {
       const int i = i0 + r;
@@ -433,7 +438,7 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
   // coefficients, matrix_source-inl.hpp) copies it into the factorization's storage and sums
   // ||B||_F^2: the diagonal, and twice the entries below it, one partial sum per row (a single
   // running sum was a chain of n^2 / 2 dependent multiply-adds). Then the copy, in L1, is scaled
-  // in place.
+  // (by the factorization as it loads each entry, for the seed's L D L^T).
   using Factorization = std::conditional_t<kGap, LaneLu<N, D>, LaneLdl<N, D>>;
   Factorization lu;
   auto diagonal2 = hn::Zero(d), below2 = hn::Zero(d), poison = hn::Zero(d);
@@ -455,16 +460,21 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
   const auto norm = hn::Sqrt(hn::MulAdd(hn::Set(d, 2.0), below2, diagonal2));
   const auto zero_matrix = hn::Eq(norm, hn::Zero(d));
   const auto scale = hn::IfThenElse(zero_matrix, one, hn::Div(one, norm));
-  // The seed (kGap false) factors without pivoting (LaneLdl), reading the lower triangle only;
-  // null_vector with it (LaneLu), which needs the upper too: mirrored from the lower.
-  for (int r = 0; r < N; ++r)
-    for (int c = 0; c <= r; ++c) {
-      const auto e = hn::Mul(hn::Load(d, lu.at(r, c)), scale);
-      hn::Store(e, d, lu.at(r, c));
-      if constexpr (!Factorization::kLowerOnly)
+  // The seed (kGap false) factors without pivoting (LaneLdl), reading the lower triangle only and
+  // scaling each entry as it first loads it (the same product as a pass of its own, one pass
+  // over the triangle fewer); null_vector with it (LaneLu), which needs the upper too: scaled and
+  // mirrored from the lower here.
+  if constexpr (Factorization::kLowerOnly) {
+    lu.factor(d, scale);
+  } else {
+    for (int r = 0; r < N; ++r)
+      for (int c = 0; c <= r; ++c) {
+        const auto e = hn::Mul(hn::Load(d, lu.at(r, c)), scale);
+        hn::Store(e, d, lu.at(r, c));
         if (c < r) hn::Store(e, d, lu.at(c, r));
-    }
-  lu.factor(d);
+      }
+    lu.factor(d);
+  }
 
   // Inverse iteration from (1, ..., 1) / sqrt(n).
   HWY_ALIGN double x[N * L];
