@@ -169,7 +169,7 @@ struct LaneLu {
 };
 
 // B = L D L^T without pivoting, every lane alike (the seed kernel, null_vector_seed): unit L below
-// the diagonal, D on it, from B's lower triangle (B's upper is never read; the factorization keeps
+// the diagonal, D as 1 / d_k in inv_pivot, from B's lower triangle (B's upper is never read; the factorization keeps
 // its undivided multipliers there). n^3 / 6 multiply-adds
 // against LU's n^3 / 3, and no per-lane row swaps, which took half of the LU's time (the
 // factorization alone, measured: 2.4x faster at n = 8, 3x at n = 15).
@@ -188,6 +188,7 @@ struct LaneLdl {
   static constexpr std::size_t L = hn::MaxLanes(D());
   static constexpr bool kLowerOnly = true;  // reads B's lower triangle only
   HWY_ALIGN double lu[N * N * L];           // unit L below the diagonal; above it, L D undivided
+                                            // (c_jk at (k, j)); the diagonal is not rewritten
   HWY_ALIGN double inv_pivot[N * L];        // 1 / d_k
 
   double* at(int r, int c) { return lu + (r * N + c) * L; }
@@ -201,8 +202,9 @@ struct LaneLdl {
   // at every step (3 loads and a store per 2 multiply-adds, two steps at a time); here a tile of
   // kTileRows rows x 2 columns stays in registers for all its k (6 loads per 8 multiply-adds at
   // 4 rows, one store per entry), and the wide group's G vectors interleave their dependency
-  // chains (the pivots' divisions, each diagonal entry's sum). BM_KernelBezoutSeed_formed, AVX-512, median of 5
-  // alternating runs: 1.0x at n = 5, 1.17x at 8, 1.11x at 20, 1.19x at 24 (BENCHMARKS.md).
+  // chains (the pivots' divisions, each diagonal entry's sum). BM_KernelBezoutSeed_formed,
+  // AVX-512, medians of 4-5 alternating runs: 1.0x at n = 5, 1.17x at 8, 1.15x at 12, 1.05x at
+  // 15, 1.02-1.11x at 20, 1.19x at 24 (BENCHMARKS.md, ninth session).
   static constexpr int kTileRows = D::kVectors >= 4 ? 2 : 4;  // 4 vectors: 2 rows, or spills
 
   // B = L D L^T for B = scale times the lower triangle stored in lu (each entry is loaded once,
