@@ -174,35 +174,37 @@ void BM_KernelEigenSelfAdjoint(benchmark::State& state) {
 constexpr int kSizes[] = {3, 5, 8, 10, 12, 15, 20, 24};
 constexpr int kSeedSizes[] = {3, 4, 5, 6, 7, 8, 9, 10, 12, 15, 20, 24};
 
+// "<name>/<implementation>/n:<n>", appended piece by piece: GCC 12 gives a false -Wrestrict on
+// chained std::string operator+.
+std::string benchmark_name(const char* name, const Implementation* impl, int n) {
+  std::string out = name;
+  out += "/";
+  out += impl->name;
+  out += "/n:";
+  out += std::to_string(n);
+  return out;
+}
+
 int register_kernels() {
   for (const Implementation* impl : available_implementations())
     for (int n : kSizes) {
-      // Appended piece by piece: GCC 12 gives a false -Wrestrict on chained std::string operator+.
-      std::string suffix = "/";
-      suffix += impl->name;
-      suffix += "/n:";
-      suffix += std::to_string(n);
-      const std::string svd = std::string("BM_KernelSymmetricSvd").append(suffix);
-      const std::string null = std::string("BM_KernelNullVector").append(suffix);
-      benchmark::RegisterBenchmark(svd.c_str(), BM_KernelSymmetricSvd, impl, n);
-      benchmark::RegisterBenchmark(null.c_str(), BM_KernelNullVector, impl, n);
-      const std::string seed = std::string("BM_KernelNullVectorSeed").append(suffix);
-      benchmark::RegisterBenchmark(seed.c_str(), BM_KernelNullVectorSeed, impl, n);
-      const std::string bezout = std::string("BM_KernelBezoutMatrix").append(suffix);
-      benchmark::RegisterBenchmark(bezout.c_str(), BM_KernelBezoutMatrix, impl, n);
+      benchmark::RegisterBenchmark(benchmark_name("BM_KernelSymmetricSvd", impl, n).c_str(), BM_KernelSymmetricSvd,
+                                   impl, n);
+      benchmark::RegisterBenchmark(benchmark_name("BM_KernelNullVector", impl, n).c_str(), BM_KernelNullVector, impl,
+                                   n);
+      benchmark::RegisterBenchmark(benchmark_name("BM_KernelNullVectorSeed", impl, n).c_str(),
+                                   BM_KernelNullVectorSeed, impl, n);
+      benchmark::RegisterBenchmark(benchmark_name("BM_KernelBezoutMatrix", impl, n).c_str(), BM_KernelBezoutMatrix,
+                                   impl, n);
     }
   // The seed, B stored or formed, also at every size around the engine's switch between them
   // (kFormedBMinDegree in engine/src/invert.cpp).
   for (const Implementation* impl : available_implementations())
     for (int n : kSeedSizes) {
-      std::string suffix = "/";
-      suffix += impl->name;
-      suffix += "/n:";
-      suffix += std::to_string(n);
-      const std::string stored = std::string("BM_KernelBezoutSeed_stored").append(suffix);
-      const std::string formed = std::string("BM_KernelBezoutSeed_formed").append(suffix);
-      benchmark::RegisterBenchmark(stored.c_str(), BM_KernelBezoutSeed, impl, n, false);
-      benchmark::RegisterBenchmark(formed.c_str(), BM_KernelBezoutSeed, impl, n, true);
+      benchmark::RegisterBenchmark(benchmark_name("BM_KernelBezoutSeed_stored", impl, n).c_str(),
+                                   BM_KernelBezoutSeed, impl, n, false);
+      benchmark::RegisterBenchmark(benchmark_name("BM_KernelBezoutSeed_formed", impl, n).c_str(),
+                                   BM_KernelBezoutSeed, impl, n, true);
     }
   return 0;
 }
