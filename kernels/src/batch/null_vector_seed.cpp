@@ -21,26 +21,28 @@
 HWY_BEFORE_NAMESPACE();
 namespace bezinv::kernels::HWY_NAMESPACE {
 
+// The seed of every lane's matrix from `source` (matrix_source-inl.hpp): the adjugate at n = 3,
+// L D L^T without pivoting otherwise.
+template <class Source>
+void seed(int n, std::size_t count, std::size_t stride, const Source& source, double* z, double* defect,
+          double* residual) {
+  if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, source, z, defect, residual);
+  dispatch_size(n, [&](auto size) {
+    null_vector_fixed<decltype(size)::value, false>(count, stride, source, z, defect, residual, nullptr);
+  });
+}
+
 void null_vector_seed_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                             double* defect, double* residual) {
-  if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, StoredMatrices{B}, z, defect, residual);
-  dispatch_size(n, [&](auto size) {
-    null_vector_fixed<decltype(size)::value, false>(count, stride, StoredMatrices{B}, z, defect, residual, nullptr);
-  });
+  seed(n, count, stride, StoredMatrices{B}, z, defect, residual);
 }
 
 void bezout_null_vector_seed_batch(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
                                    const double* By, const double* Bxy, const double* u, const double* v, double* z,
                                    double* defect, double* residual, double* poison) {
   // One denominator (Bxy null): B is affine in (u, v), see matrix_source-inl.hpp.
-  auto seed = [&](const auto& source) {
-    if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, source, z, defect, residual);
-    dispatch_size(n, [&](auto size) {
-      null_vector_fixed<decltype(size)::value, false>(count, stride, source, z, defect, residual, nullptr);
-    });
-  };
-  if (Bxy == nullptr) return seed(BezoutMatrices<false>{B0, Bx, By, Bxy, u, v, poison});
-  seed(BezoutMatrices<true>{B0, Bx, By, Bxy, u, v, poison});
+  if (Bxy == nullptr) return seed(n, count, stride, BezoutMatrices<false>{B0, Bx, By, Bxy, u, v, poison}, z, defect, residual);
+  seed(n, count, stride, BezoutMatrices<true>{B0, Bx, By, Bxy, u, v, poison}, z, defect, residual);
 }
 
 }  // namespace bezinv::kernels::HWY_NAMESPACE
