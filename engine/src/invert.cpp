@@ -5,6 +5,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/task_arena.h>
 
+#include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <array>
@@ -361,13 +362,50 @@ class StageClock {
   std::chrono::steady_clock::time_point last_;
 };
 
+// How many singular values, from the smallest, are at most kSecondNullDirectionRatio sigma_1
+// (sigma in decreasing order, n of them).
+int numerical_nullity(const double* sigma, int n) {
+  int k = 0;
+  while (k < n && sigma[n - 1 - k] <= kSecondNullDirectionRatio * sigma[0]) ++k;
+  return k;
+}
+
+// max_ij |B0| + |u0 Bx| + |v0 By| + |u0 v0 Bxy|: the size of B's terms before they cancel.
+double bezout_term_size(const InversionPlan& plan, double u0, double v0) {
+  double size = 0.0;
+  const int nn = plan.degree * plan.degree;
+  for (int i = 0; i < nn; ++i)
+    size = std::max(size, std::abs(plan.B0[i]) + std::abs(u0 * plan.Bx[i]) + std::abs(v0 * plan.By[i]) +
+                              (plan.common_denominator ? 0.0 : std::abs(u0 * v0 * plan.Bxy[i])));
+  return size;
+}
+
+// The real roots of a Bernstein polynomial r of degree n >= 1 (into t, room for n): the t with
+// beta(t) orthogonal to r's coefficients, i.e. in the n-dimensional space r^perp, found as from
+// any null space (parameters_from_null_space).
+int bernstein_roots(std::span<const double> r, std::span<double> t) {
+  const int size = static_cast<int>(r.size());
+  if (size == 2) {  // linear: r0 (1 - t) + r1 t
+    if (r[0] == r[1]) return 0;
+    t[0] = r[0] / (r[0] - r[1]);
+    return 1;
+  }
+  Eigen::Map<const Eigen::VectorXd> coefficients(r.data(), size);
+  if (!(coefficients.norm() > 0.0)) return 0;
+  const Eigen::MatrixXd column = coefficients;
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(column);
+  const Eigen::MatrixXd q = qr.householderQ();  // column 0 along r, the others span r^perp
+  return parameters_from_null_space(std::span<const double>(q.data() + size, static_cast<std::size_t>(size) * (size - 1)),
+                                    size - 1, t);
+}
+
 // Stage 5 for one lane: everything after the main candidate. sigma (n values) and V (vector k at
 // V[k n + r]) are this lane's, gathered.
 void decide(const InversionPlan& plan, double u0, double v0, const Candidate& main, const double* sigma,
             const double* V, const InvertOptions& options, PointResult& r) {
   const int n = plan.degree;
   const double tolerance = normalized_tolerance(plan, options);
-  std::array<Candidate, 6> candidates;
+  std::array<Candidate, kMaxDegree + 4> candidates;
   int count = 0;
   if (std::isfinite(main.t) || main.path != Path::none) candidates[count++] = main;
   auto add = [&](double t, Path path) {
@@ -386,12 +424,24 @@ void decide(const InversionPlan& plan, double u0, double v0, const Candidate& ma
   const bool settled = count > 0 && candidates[0].on_segment && !look_for_second && !drop;
   if (!settled) {
     if (drop) add(sylvester_parameter(pq), Path::sylvester);
-    if (have_svd && n >= 3) {
+    if (n >= 2 && !(sigma[0] > kVanishingBezoutRatio * bezout_term_size(plan, u0, v0))) {
+      // B vanishes: p and q are proportional, the curve is a straight line through the point
+      // (traced at degree n), and each real root of p (or q) is a parameter.
+      std::array<double, kMaxDegree> t;
+      const double p_size = power_leading_bound(pq.p_span()), q_size = power_leading_bound(pq.q_span());
+      const int roots = bernstein_roots(p_size >= q_size ? pq.p_span() : pq.q_span(), t);
+      for (int i = 0; i < roots; ++i) add(t[i], Path::bezout_pair);
+    } else if (have_svd && n >= 3) {
       // Nullity 2 (self-intersection, or a root driven towards infinity): both parameters from
-      // the span of the two last singular vectors.
-      double t[2];
-      const int roots = parameters_from_null_space(std::span<const double>(V + (n - 1) * n, n),
-                                                   std::span<const double>(V + (n - 2) * n, n), t);
+      // the span of the two last singular vectors. Nullity k > 2 (several parameters over C, or
+      // an ill-conditioned B): every real one from the span of the k last.
+      const int k = std::min(numerical_nullity(sigma, n), std::min(kMaxNullSpaceDimension, n - 1));
+      std::array<double, kMaxDegree> t;
+      const int roots =
+          k <= 2 ? parameters_from_null_space(std::span<const double>(V + (n - 1) * n, n),
+                                              std::span<const double>(V + (n - 2) * n, n), t.data())
+                 : parameters_from_null_space(std::span<const double>(V + (n - k) * n, static_cast<std::size_t>(k) * n),
+                                              k, t);
       for (int i = 0; i < roots; ++i) add(t[i], Path::bezout_pair);
     }
   }

@@ -4,9 +4,13 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <complex>
 #include <limits>
 
+#include <Eigen/Eigenvalues>
+
 #include "bezinv/bernstein.hpp"
+#include "bezinv/tolerances.hpp"
 
 namespace bezinv {
 
@@ -86,6 +90,37 @@ int parameters_from_null_space(std::span<const double> u, std::span<const double
   t[0] = std::min(r1, r2);
   t[1] = std::max(r1, r2);
   return 2;
+}
+
+int parameters_from_null_space(std::span<const double> basis, int k, std::span<double> t) {
+  const int size = static_cast<int>(basis.size()) / k;
+  assert(k >= 2 && size >= k + 1 && t.size() >= static_cast<std::size_t>(k));
+  // M1 = E^T A, M2 = E^T E as in the two-vector case, k x k.
+  Eigen::MatrixXd a(size - 1, k), e(size - 1, k);
+  for (int j = 0; j < k; ++j) {
+    const double* c = basis.data() + static_cast<std::size_t>(j) * size;
+    for (int i = 1; i < size; ++i) {
+      a(i - 1, j) = i * c[i];
+      e(i - 1, j) = a(i - 1, j) + (size - i) * c[i - 1];
+    }
+  }
+  const Eigen::MatrixXd m1 = e.transpose() * a, m2 = e.transpose() * e;
+  if (!m1.allFinite() || !m2.allFinite()) return 0;
+  Eigen::GeneralizedEigenSolver<Eigen::MatrixXd> qz(m1, m2, /*computeEigenvectors=*/false);
+  if (qz.info() != Eigen::Success) return 0;
+  const double scale = m1.norm() + m2.norm();
+  int count = 0;
+  for (int j = 0; j < k; ++j) {
+    const std::complex<double> alpha = qz.alphas()(j);
+    const double beta = qz.betas()(j);
+    // A root at infinity (a degree drop), or too far out to be more than rounding.
+    if (!(std::abs(beta) > 1e-13 * scale)) continue;
+    const double re = alpha.real() / beta, im = alpha.imag() / beta;
+    if (!std::isfinite(re) || std::abs(im) > kComplexRootSlack * std::max(1.0, std::abs(re))) continue;
+    t[count++] = re;
+  }
+  std::sort(t.begin(), t.begin() + count);
+  return count;
 }
 
 }  // namespace bezinv

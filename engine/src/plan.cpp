@@ -14,8 +14,8 @@
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/bezout.hpp"
-#include "bezinv/kernels/symmetric_svd.hpp"
 #include "bezinv/tolerances.hpp"
+#include "common_factor.hpp"
 #include "isolation.hpp"
 
 #include "refine.hpp"
@@ -60,11 +60,6 @@ std::vector<std::array<double, 2>> control_points(const Curve& c) {
   return pts;
 }
 
-// Sample parameters for the properness test: irrational-looking, away from the ends and from
-// each other, so that hitting an exceptional point (double point) at all three is impossible
-// for a proper curve.
-constexpr std::array<double, 3> kProperSamples = {0.2718281828459045, 0.5772156649015329, 0.8414709848078965};
-
 }  // namespace
 
 std::array<double, 2> InversionPlan::normalized_point(double t) const {
@@ -82,11 +77,14 @@ void bezout_at(const InversionPlan& plan, double u0, double v0, std::span<double
   }
 }
 
-InversionPlan make_plan(const Curve& curve) {
-  validate(curve);
+InversionPlan make_plan(const Curve& given) {
+  validate(given);
   InversionPlan plan;
-  plan.curve = curve;
-  plan.input_degree = curve.degree();
+  plan.curve = given;
+  plan.input_degree = given.degree();
+  // A factor shared by all the polynomials would give B a null direction at every point
+  // (engine/src/common_factor.hpp); the rest of the plan is the curve without it.
+  const Curve curve = detail::without_common_factor(given);
   plan.common_denominator = curve.common_denominator();
 
   // Size: bounding box of the control points.
@@ -194,31 +192,6 @@ InversionPlan make_plan(const Curve& curve) {
     return plan;
   }
 
-  // Properness: at three generic points of the curve B must have nullity exactly 1.
-  if (n >= 2) {
-    std::array<double, kMaxDegree * kMaxDegree> B, V;
-    std::array<double, kMaxDegree> sigma;
-    bool nullity_above_one_everywhere = true;
-    for (double ts : kProperSamples) {
-      const auto uv = plan.normalized_point(ts);
-      bezout_at(plan, uv[0], uv[1], B);
-      kernels::symmetric_svd(n, std::span<const double>(B.data(), nn), sigma, V);
-      // Judged against the size of B's terms before they cancel, not against sigma_1: on an
-      // improper curve of degree 2 (a line traced by t^2) B vanishes altogether, and sigma_1 is
-      // round-off itself.
-      double reference = sigma[0];
-      for (int i = 0; i < nn; ++i)
-        reference = std::max(reference, std::abs(plan.B0[i]) + std::abs(uv[0] * plan.Bx[i]) +
-                                            std::abs(uv[1] * plan.By[i]) + std::abs(uv[0] * uv[1] * plan.Bxy[i]));
-      const double ratio = sigma[n - 2] / reference;
-      if (!(ratio <= kImproperSigmaRatio)) nullity_above_one_everywhere = false;
-    }
-    if (nullity_above_one_everywhere) {
-      plan.usable = false;
-      plan.reason = "improperly parametrized curve (its points have several parameters: a reparametrization "
-                    "such as t -> t^2); the resultant method cannot separate them";
-    }
-  }
   return plan;
 }
 

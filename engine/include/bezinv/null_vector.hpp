@@ -29,4 +29,16 @@ double bernstein_form_defect(std::span<const double> z, double t);
 // or a complex pair is not returned.
 int parameters_from_null_space(std::span<const double> u, std::span<const double> v, double t[2]);
 
+// The same for a null space of any dimension k (2 <= k <= N): the k vectors of size N+1 lie one
+// after the other in `basis` (vector j from basis[j (N+1)]). A point with k parameters over C (an
+// improperly parametrized curve: every point of Q(phi(t)) has deg phi of them; a straight line
+// traced at degree n has n) has the Bernstein vectors of all k in the null space of B, so the
+// pencil above, k x k after the least-squares step, has them for its eigenvalues. Solved by the
+// QZ algorithm, so that a root at infinity (the pencil's E singular) is a zero beta, skipped.
+// Writes the real finite roots, in increasing order, to t (room for k) and returns how many.
+// Complex roots are returned by their real part when their imaginary part is within
+// kComplexRootSlack of it (a real double root split by rounding); every root is only a candidate,
+// which the caller verifies by its distance to the point.
+int parameters_from_null_space(std::span<const double> basis, int k, std::span<double> t);
+
 }  // namespace bezinv

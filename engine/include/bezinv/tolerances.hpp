@@ -12,18 +12,10 @@ inline constexpr int kMaxDegree = 32;
 // control points: a point within kDefaultRelativeTolerance * diagonal of the curve counts as on it.
 inline constexpr double kDefaultRelativeTolerance = 1e-6;
 
-// Properness (plan time). At a generic on-curve point a proper parametrization gives B nullity 1:
-// sigma_{n-1}/sigma_1 stays above ~5e-5 for random rational Bezier curves of degree <= 30 (measured),
-// while an improper one (P(t) = Q(phi(t)), deg phi >= 2) has nullity >= 2 and sigma_{n-1}/sigma_1 at
-// round-off level (~1e-16, measured). 1e-10 sits in the middle of that gap (log scale).
-// The denominator is max(sigma_1, max_ij |B0| + |x0 Bx| + |y0 By| + |x0 y0 Bxy|), the size of B's
-// terms before they cancel: for a line traced by t^2, B vanishes and sigma_1 is round-off too.
-inline constexpr double kImproperSigmaRatio = 1e-10;
-
 // A second candidate parameter (self-intersection, or a root pushed towards infinity by a
 // near degree drop) is looked for in the two-dimensional near-null space of B when
 // sigma_{n-1}/sigma_1 is at most this. At a double point with noise delta (relative to the
-// curve size) the ratio is O(delta); proper curves rarely go below 5e-5 elsewhere (see above),
+// curve size) the ratio is O(delta); proper curves rarely go below 5e-5 elsewhere (measured on random curves of degree <= 30),
 // so 1e-3 catches every double point within the default tolerance at the price of an occasional
 // extra (cheap, verified) candidate. Candidates are always verified by their residual, so a
 // false trigger costs time, never correctness.
@@ -49,7 +41,7 @@ inline constexpr double kSecondNullDirectionRatio = 1e-3;
 // same statuses as the SVD path, tests/engine/invert_property_test.cpp). Nullity 2 gives ~1.
 // kFastPathMaxDegree: the LU kernel is sized up to kernels::kMaxBatchSize.
 // kFastPathMinGap: below this sigma_{n-1} estimate the lane may be at a double point (the ratio is
-// O(distance to the crossing), and proper curves stay above 5e-5 elsewhere, see above); it goes to
+// O(distance to the crossing), and proper curves mostly stay above 5e-5 elsewhere); it goes to
 // the SVD path, whose two last singular vectors are exact where the kernel's second vector is not.
 inline constexpr double kFastPathGapRatio = 2 * kSecondNullDirectionRatio;
 inline constexpr double kFastPathMinGap = 1e-5;
@@ -62,9 +54,32 @@ inline constexpr int kFastPathMaxDegree = 32;
 inline constexpr double kDegreeDropRatio = 1e-9;
 
 // Effective degree (plan time): a curve given at degree n whose four Bernstein polynomials all have
-// a power-basis leading coefficient below this times its size bound is reduced to degree n-1
-// (repeatedly). Degree elevation in double leaves a leading coefficient of about n * eps * bound.
-inline constexpr double kElevatedLeadingRatio = 1e-12;
+// a power-basis leading coefficient at most this times its size bound, 2^n times the largest
+// coefficient as given (before the curve is moved to its centre), is reduced to degree n-1
+// (repeatedly). That is the rounding that degree elevation in double leaves there: each elevated
+// coefficient is off by an ulp or two of the coefficients' size, and the leading coefficient, a
+// signed sum with binomial weights, gathers 2^n of them at worst and about 2^n / (pi n)^(1/4) of
+// them typically. The bound is in ulps of the input's own digits, so a curve is judged the same
+// wherever it sits: the 1-unit cubic at 1e12 keeps its degree, as at the origin. Too small a bound
+// keeps an elevated curve at its given degree (its points still get verified answers, through the
+// second-parameter search, only slower); too large a one drops a real term of the curve, which
+// no later step can recover: so the bound sits near the typical rounding, not the worst case.
+inline constexpr double kElevatedLeadingRatio = 8 * 0x1p-52;
+
+// The null space of B at a point is searched for parameters (engine/src/invert.cpp, decide) in
+// the span of the singular vectors of every sigma_i/sigma_1 at most kSecondNullDirectionRatio, at
+// most kMaxNullSpaceDimension of them: more than 2 where a point has several parameters over C
+// (an improperly parametrized curve, a line traced at degree n), or where B is ill-conditioned
+// (a graph of a function has p of degree 1). A QZ eigenvalue of that search whose imaginary part
+// is within kComplexRootSlack of its real part (relative, at least 1) is taken as real: a real
+// double root splits into such a pair by rounding; every root is verified by its distance.
+inline constexpr int kMaxNullSpaceDimension = 8;
+// B vanishes at a point (sigma_1 at most this times the size of B's terms before they cancel,
+// max_ij |B0| + |x0 Bx| + |y0 By| + |x0 y0 Bxy|) where p and q are proportional: on a straight line
+// traced at degree n, every point of the line. There B is rounding, ~n eps times that size; on any
+// other curve sigma_1 is of the order of that size. The parameters are then the roots of p.
+inline constexpr double kVanishingBezoutRatio = 1e-10;
+inline constexpr double kComplexRootSlack = 1e-6;
 
 // Two parameters of a double point must differ by more than this to count as distinct branches.
 inline constexpr double kDistinctParameterGap = 1e-7;
