@@ -399,6 +399,17 @@ int bernstein_roots(std::span<const double> r, std::span<double> t) {
                                     size - 1, t);
 }
 
+// Whether P0 is reached at t1 and t2 by separate branches of the curve: somewhere between them
+// the curve leaves the tolerance of P0 (sampled at kBranchSamples interior parameters; a branch
+// that passes slowly, or a cusp within the tolerance, stays inside).
+bool separate_branches(const InversionPlan& plan, double u0, double v0, double t1, double t2, double tolerance) {
+  for (int k = 1; k <= kBranchSamples; ++k) {
+    const double t = t1 + (t2 - t1) * k / (kBranchSamples + 1);
+    if (!(detail::distance(plan, u0, v0, t) <= tolerance)) return true;
+  }
+  return false;
+}
+
 // Stage 5 for one lane: everything after the main candidate. sigma (n values) and V (vector k at
 // V[k n + r]) are this lane's, gathered.
 void decide(const InversionPlan& plan, double u0, double v0, const Candidate& main, const double* sigma,
@@ -446,16 +457,23 @@ void decide(const InversionPlan& plan, double u0, double v0, const Candidate& ma
     }
   }
 
-  // On the segment at two distinct parameters: a double point.
+  // On the segment at two distinct parameters of separate branches: a double point. Two
+  // parameters of one branch (the curve between them stays within the tolerance: it passes
+  // slowly, or turns at a cusp near the point) are one answer, the nearer.
   const Candidate* first = nullptr;
   const Candidate* second = nullptr;
   for (int i = 0; i < count; ++i) {
     const Candidate& c = candidates[i];
     if (!c.on_segment) continue;
     if (!first) { first = &c; continue; }
-    if (std::abs(c.t - first->t) > kDistinctParameterGap && (!second || c.distance < second->distance))
-      second = &c;
+    if (std::abs(c.t - first->t) <= kDistinctParameterGap) continue;
+    if (!separate_branches(plan, u0, v0, first->t, c.t, tolerance)) {
+      if (c.distance < first->distance) first = &c;
+      continue;
+    }
+    if (!second || c.distance < second->distance) second = &c;
   }
+  if (second && !separate_branches(plan, u0, v0, first->t, second->t, tolerance)) second = nullptr;
   auto report = [&](const Candidate& c, Status status) {
     r.t = c.t;
     r.residual = c.distance * plan.scale;
@@ -698,13 +716,37 @@ void flush_svd_queue(const InversionPlan& plan, const InvertOptions& options, St
            batch_workspace(), clock);
 }
 
+// A finite point so far from the curve that its normalized coordinates or its Bezout matrix
+// overflow: off_curve at the point of the segment nearest to it. From that far (over 1e150 times
+// the curve's size) that is, to within the size over the distance, the point of the segment
+// farthest along the point's direction from the centre: the nearest point to a stand-in on that
+// ray at kFarStandIn (normalized units), where nothing overflows.
+void answer_far_point(const InversionPlan& plan, const Point& point, PointResult& r) {
+  constexpr double kFarStandIn = 1e8;
+  // The direction from the centre, in coordinates scaled by a power of two so nothing overflows.
+  const int e = std::max(std::ilogb(std::max(std::abs(point.x), std::abs(point.y))),
+                         std::ilogb(std::max({std::abs(plan.centre[0]), std::abs(plan.centre[1]), 1.0})));
+  const double dx = std::ldexp(point.x, -e) - std::ldexp(plan.centre[0], -e);
+  const double dy = std::ldexp(point.y, -e) - std::ldexp(plan.centre[1], -e);
+  const double a = plan.cos_rotation * dx - plan.sin_rotation * dy, b = plan.sin_rotation * dx + plan.cos_rotation * dy;
+  const double length = std::hypot(a, b);
+  r = PointResult{};
+  r.status = Status::off_curve;
+  r.path = Path::nearest;
+  r.t = detail::nearest_parameter_on_segment(plan, kFarStandIn * a / length, kFarStandIn * b / length, -1.0);
+  // |P(t) - P0| in input units, halved first so the differences do not overflow (inf only when
+  // the distance itself exceeds the largest double).
+  const auto p = plan.curve.point(r.t);
+  r.residual = 2 * std::hypot(0.5 * p[0] - 0.5 * point.x, 0.5 * p[1] - 0.5 * point.y);
+}
+
 // A lane whose Bezout matrix overflowed (poison[l] not 0: an entry is not finite) is answered
 // failed, and leaves the pipeline.
-void mark_overflowing_b(const double* poison, std::size_t count, BatchWorkspace& w, PointResult* results) {
+void mark_overflowing_b(const InversionPlan& plan, const Point* points, const double* poison, std::size_t count,
+                        BatchWorkspace& w, PointResult* results) {
   for (std::size_t l = 0; l < count; ++l)
     if (w.active[l] && !(poison[l] == 0.0)) {
-      results[l].status = Status::failed;
-      results[l].reason = "point so far from the curve that the Bezout matrix overflows";
+      answer_far_point(plan, points[l], results[l]);
       w.active[l] = 0;
     }
 }
@@ -816,8 +858,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
       r.status = Status::failed;
       r.reason = plan.reason;
     } else if (!std::isfinite(w.u[l]) || !std::isfinite(w.v[l])) {
-      r.status = Status::invalid_input;
-      r.reason = "coordinate overflows after normalization";
+      answer_far_point(plan, points[l], r);
     } else {
       w.active[l] = 1;
     }
@@ -839,7 +880,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
     kernels::active_implementation().bezout_matrix(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                                    bilinear_coefficients(plan), w.u.data(), w.v.data(), w.B.data(),
                                                    poison.data());
-    mark_overflowing_b(poison.data(), count, w, results);
+    mark_overflowing_b(plan, points, poison.data(), count, w, results);
     for (std::size_t l = 0; l < count; ++l) {
       if (!w.active[l])
         for (int i = 0; i < nn; ++i) w.B[i * stride + l] = (i % (n + 1) == 0) ? 1.0 : 0.0;
@@ -892,7 +933,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
       kernel.bezout_null_vector_seed(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                      bilinear_coefficients(plan), w.u.data(), w.v.data(), w.z.data(), w.defect.data(),
                                      w.estimate.data(), poison.data());
-      mark_overflowing_b(poison.data(), count, w, results);
+      mark_overflowing_b(plan, points, poison.data(), count, w, results);
     } else if (two_passes) {
       kernel.null_vector_seed(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data());
     } else {

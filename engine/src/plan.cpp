@@ -113,8 +113,8 @@ InversionPlan make_plan(const Curve& given) {
   // a rotation (x' = c x - s y needs the product of both), so they keep the axes.
   if (plan.common_denominator) {
     double sxx = 0, syy = 0, sxy = 0;
-    for (const auto& p : pts) {
-      const double dx = p[0] - plan.centre[0], dy = p[1] - plan.centre[1];
+    for (const auto& p : pts) {  // in units of the scale, so the squares cannot overflow
+      const double dx = (p[0] - plan.centre[0]) * plan.inverse_scale, dy = (p[1] - plan.centre[1]) * plan.inverse_scale;
       sxx += dx * dx; syy += dy * dy; sxy += dx * dy;
     }
     const double principal = 0.5 * std::atan2(2 * sxy, sxx - syy);

@@ -72,8 +72,10 @@ struct InversionPlan {
 
   // Input coordinates -> normalized (inline: the engine normalizes whole batches in one loop).
   std::array<double, 2> normalize(double x, double y) const {
-    const double dx = x - centre[0], dy = y - centre[1];
-    return {(cos_rotation * dx - sin_rotation * dy) * inverse_scale, (sin_rotation * dx + cos_rotation * dy) * inverse_scale};
+    // Scaled before the difference (by a power of two: the same bits as scaling after it), so a
+    // point near the largest double on the far side of the centre does not overflow.
+    const double dx = x * inverse_scale - centre[0] * inverse_scale, dy = y * inverse_scale - centre[1] * inverse_scale;
+    return {cos_rotation * dx - sin_rotation * dy, sin_rotation * dx + cos_rotation * dy};
   }
   // P(t) in normalized coordinates.
   std::array<double, 2> normalized_point(double t) const;

@@ -83,6 +83,10 @@ inline constexpr double kComplexRootSlack = 1e-6;
 
 // Two parameters of a double point must differ by more than this to count as distinct branches.
 inline constexpr double kDistinctParameterGap = 1e-7;
+// ... and the curve must leave the tolerance of the point somewhere between them: checked at this
+// many evenly spaced parameters (a loop back to the point is wide in parameter; a slow stretch of
+// the curve, e.g. near a tiny weight, or a cusp within the tolerance stays inside throughout).
+inline constexpr int kBranchSamples = 31;
 
 // Newton refinement: iteration cap, and the largest step (in t) one iteration may take, so the
 // iteration stays in the basin of the algebraic parameter it started from.
