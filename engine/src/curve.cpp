@@ -7,6 +7,7 @@
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/tolerances.hpp"
+#include "io_quote.hpp"
 
 namespace bezinv {
 
@@ -43,7 +44,7 @@ Curve Curve::rational_bezier(std::string id, const std::vector<std::array<double
   c.id = std::move(id);
   c.kind = CurveKind::rational_bezier;
   if (weights.size() != points.size())
-    throw CurveError("curve \"" + c.id + "\": weights: " + std::to_string(weights.size()) +
+    throw CurveError("curve " + detail::quoted_excerpt(c.id) + ": weights: " + std::to_string(weights.size()) +
                      " weights for " + std::to_string(points.size()) + " points");
   for (std::size_t i = 0; i < points.size(); ++i) {
     // Homogeneous form: the numerators carry w_i a_i, so P = X/W with one denominator W.
@@ -110,7 +111,8 @@ bool has_root_on_unit_interval(const std::vector<double>& coefficients) {
 }  // namespace
 
 void validate(const Curve& curve) {
-  const std::string who = "curve \"" + curve.id + "\": ";
+  // The id may come from a file: escaped and cut short like any file content in a message.
+  const std::string who = "curve " + detail::quoted_excerpt(curve.id) + ": ";
   const std::size_t size = curve.x_num.size();
   if (size < 2)
     throw CurveError(who + "degree must be at least 1 (" + std::to_string(size) + " coefficients given)");

@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <initializer_list>
+#include <iterator>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -17,12 +19,24 @@
 #include <nlohmann/json.hpp>
 
 #include "bezinv/io.hpp"
+#include "io_quote.hpp"
 #include "io_whole_file.hpp"
 
 namespace bezinv {
 namespace {
 
 using json = nlohmann::json;
+using detail::escaped_excerpt;
+using detail::quoted_excerpt;
+
+// The largest CURVES.json read, checked from the file size before reading (and counted while
+// reading a pipe or a device). The text, its parse tree and then the plans take about 25 times
+// the text (22 MB of 100,000 cubics: 0.54 GB peak), so this admits some 1.2 million cubics in
+// about 6.5 GB, and no more, rather than ending in an allocation failure.
+constexpr std::uint64_t kMaxCurvesBytes = std::uint64_t{256} << 20;
+// The deepest nesting of arrays and objects read: a curve list needs 5 ({"curves": [{"points":
+// [[x, y]]}]}), and every level costs a frame, so a file of '[' must not get one per byte.
+constexpr std::size_t kMaxJsonDepth = 16;
 
 [[noreturn]] void fail(const std::string& where, const std::string& problem) {
   throw InputError(where + ": " + problem);
@@ -36,14 +50,28 @@ std::size_t line_of(std::string_view text, std::size_t byte) {
   return line;
 }
 
-// Drops nlohmann's "[json.exception.parse_error.101] " tag: the reader wants the sentence.
+// Drops nlohmann's "[json.exception.parse_error.101] " tag: the reader wants the sentence. The
+// sentence quotes the file's text between single quotes ("last read: '...'", "number overflow
+// parsing '...'"), a whole unterminated string if need be: that part is escaped and cut short.
 std::string without_exception_tag(const char* what) {
   std::string_view message(what);
   if (message.starts_with("[json.exception.")) {
     const auto end = message.find("] ");
     if (end != std::string_view::npos) message.remove_prefix(end + 2);
   }
-  return std::string(message);
+  const std::size_t open = message.find('\'');
+  const std::size_t close = message.rfind('\'');
+  if (open == std::string_view::npos || close == open) return std::string(message);
+  return std::string(message.substr(0, open + 1)) + escaped_excerpt(message.substr(open + 1, close - open - 1)) +
+         std::string(message.substr(close));
+}
+
+// A key in a path or message: as it is when it is a plain name (all the format's are), else quoted.
+std::string key_text(std::string_view key) {
+  const bool plain = !key.empty() && key.size() <= 40 && std::all_of(key.begin(), key.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+  });
+  return plain ? std::string(key) : quoted_excerpt(key);
 }
 
 // Builds the DOM like json::parse, but remembers the path from the root to the value being read,
@@ -71,7 +99,7 @@ class LocatingBuilder : public nlohmann::json_sax<json> {
   bool key(string_t& key) override {
     Frame& top = stack_.back();
     if (top.node->contains(key)) {
-      error = path(/*pending_in_array=*/false, /*innermost_key=*/false) + ": duplicate key \"" + key + "\"";
+      error = path(/*pending_in_array=*/false, /*innermost_key=*/false) + ": duplicate key " + quoted_excerpt(key);
       return false;
     }
     top.key = std::move(key);
@@ -118,6 +146,11 @@ class LocatingBuilder : public nlohmann::json_sax<json> {
     return true;
   }
   bool open(json&& container) {
+    if (stack_.size() >= kMaxJsonDepth) {
+      error = path(true, true) + ": nested deeper than " + std::to_string(kMaxJsonDepth) +
+              " arrays and objects (a curve list needs 5)";
+      return false;
+    }
     json* node = insert(std::move(container));
     stack_.push_back({node, {}});
     return true;
@@ -144,7 +177,7 @@ class LocatingBuilder : public nlohmann::json_sax<json> {
         out += ']';
       } else if (!stack_[i].key.empty() && (innermost_key || !innermost)) {
         if (!out.empty()) out += '.';
-        out += stack_[i].key;
+        out += key_text(stack_[i].key);
       }
     }
     return out.empty() ? std::string("top level") : out;
@@ -204,18 +237,31 @@ std::vector<std::array<double, 2>> point_list(const json& curve, const std::stri
   return out;
 }
 
-// Fields that belong to one kind only: giving them to another kind is a mistake we can name
-// (e.g. weights on a polynomial "bezier" would otherwise be silently ignored).
-void refuse_fields(const json& curve, std::initializer_list<const char*> fields, const char* kind,
-                   const std::string& where) {
-  for (const char* field : fields)
-    if (curve.contains(field)) fail(where, std::string(field) + ": not a field of kind \"" + kind + "\"");
+// Every field a curve may have, by kind. Any other field is refused rather than ignored: a typo
+// ("weight") or a field of another kind (weights on a polynomial "bezier") would otherwise change
+// nothing and go unnoticed.
+constexpr const char* kAllCurveFields[] = {"id", "kind", "points", "weights", "x_num", "x_den", "y_num", "y_den"};
+
+void refuse_other_fields(const json& curve, std::initializer_list<const char*> fields, const char* kind,
+                         const std::string& where) {
+  const auto among = [](std::string_view key, const auto& names) {
+    return std::any_of(std::begin(names), std::end(names), [&](const char* name) { return key == name; });
+  };
+  for (const auto& [key, value] : curve.items()) {
+    if (among(key, fields)) continue;
+    if (among(key, kAllCurveFields)) fail(where, key + ": not a field of kind \"" + kind + "\"");
+    std::string known;
+    for (const char* field : fields) known += (known.empty() ? "" : ", ") + std::string(field);
+    fail(where, quoted_excerpt(key) + ": unknown field (kind \"" + kind + "\" has " + known + ")");
+  }
 }
 
 // POINTS.csv names curves by id in a comma-separated, space-trimmed field, so such an id could
-// never be referred to by name.
+// never be referred to by name; a control character could not be typed there, nor shown.
 bool id_fits_points_csv(const std::string& id) {
-  if (id.find_first_of(",\"\r\n") != std::string::npos) return false;
+  if (id.find_first_of(",\"") != std::string::npos) return false;
+  if (std::any_of(id.begin(), id.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7F; }))
+    return false;
   const auto is_space = [](char c) { return c == ' ' || c == '\t'; };
   return !is_space(id.front()) && !is_space(id.back());
 }
@@ -227,9 +273,9 @@ Curve parse_curve(const json& entry, std::string& where) {
   if (!id_value.is_string()) fail(where, "id: expected a string, found " + a_type_name(id_value));
   std::string id = id_value.get<std::string>();
   if (id.empty()) fail(where, "id: empty");
-  where += " (id " + id_value.dump(-1, ' ', false, json::error_handler_t::replace) + ")";
+  where += " (id " + quoted_excerpt(id) + ")";
   if (!id_fits_points_csv(id))
-    fail(where, "id: must not contain commas, quotes, line breaks or surrounding spaces "
+    fail(where, "id: must not contain commas, quotes, control characters or surrounding spaces "
                 "(POINTS.csv refers to curves by id)");
 
   const json& kind_value = required_field(entry, "kind", where);
@@ -237,11 +283,11 @@ Curve parse_curve(const json& entry, std::string& where) {
   const std::string kind = kind_value.get<std::string>();
 
   if (kind == "bezier") {
-    refuse_fields(entry, {"weights", "x_num", "x_den", "y_num", "y_den"}, "bezier", where);
+    refuse_other_fields(entry, {"id", "kind", "points"}, "bezier", where);
     return Curve::bezier(std::move(id), point_list(entry, where));
   }
   if (kind == "rational_bezier") {
-    refuse_fields(entry, {"x_num", "x_den", "y_num", "y_den"}, "rational_bezier", where);
+    refuse_other_fields(entry, {"id", "kind", "points", "weights"}, "rational_bezier", where);
     auto points = point_list(entry, where);
     auto weights = number_list(entry, "weights", where);
     if (weights.size() != points.size())
@@ -256,7 +302,7 @@ Curve parse_curve(const json& entry, std::string& where) {
     return Curve::rational_bezier(std::move(id), points, weights);
   }
   if (kind == "rational") {
-    refuse_fields(entry, {"points", "weights"}, "rational", where);
+    refuse_other_fields(entry, {"id", "kind", "x_num", "x_den", "y_num", "y_den"}, "rational", where);
     auto x_num = number_list(entry, "x_num", where);
     auto x_den = number_list(entry, "x_den", where);
     auto y_num = number_list(entry, "y_num", where);
@@ -270,13 +316,13 @@ Curve parse_curve(const json& entry, std::string& where) {
                         std::to_string(x_num.size()) + " (the four lists need one common degree)");
     return Curve::rational(std::move(id), std::move(x_num), std::move(x_den), std::move(y_num), std::move(y_den));
   }
-  fail(where, "kind: unknown \"" + kind + "\" (expected bezier, rational_bezier or rational)");
+  fail(where, "kind: unknown " + quoted_excerpt(kind) + " (expected bezier, rational_bezier or rational)");
 }
 
 }  // namespace
 
 std::vector<Curve> read_curves_json(const std::string& path) {
-  const std::string text = detail::read_whole_file(path);
+  const std::string text = detail::read_whole_file(path, kMaxCurvesBytes, "CURVES.json");
 
   LocatingBuilder builder(text);
   // strict: nothing may follow the top-level value.
@@ -287,6 +333,8 @@ std::vector<Curve> read_curves_json(const std::string& path) {
   const json& root = builder.root;
 
   if (!root.is_object()) fail(path, "expected an object {\"curves\": [...]}, found " + a_type_name(root));
+  for (const auto& [key, value] : root.items())
+    if (key != "curves") fail(path, quoted_excerpt(key) + ": unknown field (the top level has only \"curves\")");
   const auto list = root.find("curves");
   if (list == root.end()) fail(path, "curves: missing (expected {\"curves\": [...]})");
   if (!list->is_array()) fail(path, "curves: expected an array, found " + a_type_name(*list));
@@ -305,7 +353,7 @@ std::vector<Curve> read_curves_json(const std::string& path) {
     } catch (const CurveError& e) {
       // validate() names the curve itself ("curve \"a\": ..."); `where` already does.
       std::string_view message(e.what());
-      const std::string own_prefix = "curve \"" + curve.id + "\": ";
+      const std::string own_prefix = "curve " + quoted_excerpt(curve.id) + ": ";
       if (message.starts_with(own_prefix)) message.remove_prefix(own_prefix.size());
       fail(where, std::string(message));
     }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "bezinv/io.hpp"
+#include "io_quote.hpp"
 
 namespace bezinv::detail {
 namespace {
@@ -18,6 +19,9 @@ namespace {
 constexpr std::string_view kMagic = "\x93NUMPY";
 // np.save aligns the data to 64 bytes; so do we.
 constexpr std::size_t kAlignment = 64;
+// The longest header dict read: numpy's own default (np.load's max_header_size); a length field
+// beyond it is refused before anything is allocated for it.
+constexpr std::uint32_t kMaxHeaderBytes = 10000;
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem) {
   throw InputError(path + ": header: " + problem);
@@ -48,7 +52,7 @@ class HeaderParser {
         has_shape = true;
         header.shape = integer_tuple();
       } else {
-        fail(path_, "unexpected key '" + key + "'");
+        fail(path_, "unexpected key " + quoted_excerpt(key));
       }
       skip_blanks();
       if (peek() == ',') {
@@ -58,6 +62,12 @@ class HeaderParser {
       skip_blanks();
       if (peek() != '}') malformed("',' or '}'");
     }
+    ++position_;
+    // np.save pads the dict with spaces and ends it with a newline; anything else after the '}'
+    // is not a header numpy wrote, and not part of the array either.
+    const std::string_view rest = text_.substr(position_);
+    if (rest.find_first_not_of(" \n") != std::string_view::npos)
+      fail(path_, "text after the dict: " + quoted_excerpt(rest) + " (only spaces and a newline may follow its '}')");
     if (!has_descr) fail(path_, "missing 'descr'");
     if (!has_order) fail(path_, "missing 'fortran_order'");
     if (!has_shape) fail(path_, "missing 'shape'");
@@ -170,6 +180,9 @@ NpyHeader read_npy_header(std::FILE* file, const std::string& path) {
   const int length_bytes = major == 1 ? 2 : 4;
   if (got < 10 || (length_bytes == 4 && std::fread(start + 10, 1, 2, file) != 2)) fail(path, "truncated");
   const std::uint32_t length = little_endian(start + 8, length_bytes);
+  if (length > kMaxHeaderBytes)
+    fail(path, "length " + std::to_string(length) + " bytes is more than the " + std::to_string(kMaxHeaderBytes) +
+                   " numpy reads (np.load's max_header_size)");
   std::string text(length, '\0');
   if (std::fread(text.data(), 1, length, file) != length) fail(path, "truncated (the dict is shorter than its length)");
   NpyHeader header = HeaderParser(text, path).parse();

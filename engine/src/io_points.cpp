@@ -22,6 +22,7 @@
 #include "bezinv/io.hpp"
 #include "io_npy.hpp"
 #include "io_point_readers.hpp"
+#include "io_quote.hpp"
 
 namespace bezinv {
 namespace {
@@ -31,6 +32,9 @@ using namespace detail;  // the per-row reasons
 // Bytes read from the file at a time: large enough that the syscalls do not show, small enough
 // to stay in L2/L3 while the lines are parsed.
 constexpr std::size_t kReadBytes = std::size_t{1} << 22;
+// The longest line read. A row is three short fields; a longer line is not a points file (a binary
+// file, one without line breaks such as /dev/zero), and holding it would grow memory without end.
+constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;
 
 [[noreturn]] void fail(const std::string& path, std::size_t line, const std::string& problem) {
   throw InputError(path + ":" + std::to_string(line) + ": " + problem);
@@ -45,16 +49,6 @@ std::string_view trimmed(std::string_view field) {
 }
 
 bool all_blank(std::string_view line) { return trimmed(line).empty(); }
-
-// A line quoted in an error message: one line, bounded length, control characters shown as '?'.
-std::string excerpt(std::string_view line) {
-  constexpr std::size_t kMax = 60;
-  std::string out(line.substr(0, kMax));
-  for (char& c : out)
-    if (static_cast<unsigned char>(c) < 0x20) c = '?';
-  if (line.size() > kMax) out += "...";
-  return "'" + out + "'";
-}
 
 enum class Parsed { ok, not_a_number, not_finite };
 
@@ -193,15 +187,22 @@ class CsvPointReader final : public PointReader {
   }
 
   // The next line, CR of a CRLF ending removed; false at the end of the file. The view lasts
-  // until the next call.
+  // until the next call. A line longer than kMaxLineBytes (not counting its CR LF) is an
+  // InputError for line line_number_ + 1: the callers count a line once they have it.
   bool next_line(std::string_view& line) {
     while (true) {
       const char* start = buffer_.data() + position_;
       const std::size_t remaining = buffer_.size() - position_;
+      // A line at the limit and its CR LF fit in the window; no newline in a full window is
+      // already too long, so the buffer never holds much more than one limit of a line.
+      const std::size_t window = std::min(remaining, kMaxLineBytes + 2);
+      const void* newline = std::memchr(start, '\n', window);
       std::size_t length = remaining;
-      if (const void* newline = std::memchr(start, '\n', remaining)) {
+      if (newline != nullptr) {
         length = static_cast<std::size_t>(static_cast<const char*>(newline) - start);
         position_ += length + 1;
+      } else if (window == kMaxLineBytes + 2) {
+        too_long();
       } else if (at_end_) {
         if (remaining == 0) return false;
         position_ += remaining;  // the last line, without a final newline
@@ -210,9 +211,15 @@ class CsvPointReader final : public PointReader {
         continue;
       }
       if (length > 0 && start[length - 1] == '\r') --length;
+      if (length > kMaxLineBytes) too_long();
       line = {start, length};
       return true;
     }
+  }
+
+  [[noreturn]] void too_long() const {
+    fail(path_, line_number_ + 1, "line longer than " + std::to_string(kMaxLineBytes) +
+                                      " bytes (the limit for a line of POINTS.csv)");
   }
 
   void read_header() {
@@ -222,43 +229,87 @@ class CsvPointReader final : public PointReader {
     const std::string header(has_line ? line : std::string_view());
     if (all_blank(header)) {
       // Nothing but blank lines is an empty file; a blank line before data is a missing header.
-      while (next_line(line))
-        if (!all_blank(line)) fail(path_, 1, "header must be 'curve,x,y', found " + excerpt(header));
+      while (next_line(line)) {
+        ++line_number_;
+        if (!all_blank(line)) fail(path_, 1, "header must be 'curve,x,y', found " + quoted_excerpt(header));
+      }
       fail(path_, 1, "empty file (expected the header 'curve,x,y')");
     }
-    std::string_view columns[3];
-    std::size_t count = 0;
-    std::size_t start = 0;
-    bool too_many = false;
-    const std::string_view text(header);
-    while (true) {
-      const std::size_t comma = text.find(',', start);
-      const std::string_view column =
-          trimmed(text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
-      if (count < 3) columns[count] = column;
-      else too_many = true;
-      ++count;
-      if (comma == std::string_view::npos) break;
-      start = comma + 1;
+    const std::size_t count = split(header);
+    if (count != 3 || fields_[0] != "curve" || fields_[1] != "x" || fields_[2] != "y")
+      fail(path_, 1, "header must be 'curve,x,y', found " + quoted_excerpt(header));
+  }
+
+  // Splits a line into fields_ (the first three; views into the line or into unquoted_, valid
+  // until the next call) and returns how many fields it has. RFC 4180 quoting: a field in double
+  // quotes may hold commas, and "" inside it stands for one quote. Blanks around a field are
+  // dropped, inside quotes too (no id or number begins or ends with one). A quoted field must
+  // close on its line: line breaks inside quotes are refused, as rows are one line each here.
+  std::size_t split(std::string_view line) {
+    if (std::memchr(line.data(), '"', line.size()) == nullptr) {
+      // The common case, without quotes: no copies.
+      std::size_t count = 0, start = 0;
+      while (true) {
+        const std::size_t comma = line.find(',', start);
+        if (count < 3) fields_[count] = trimmed(line.substr(start, comma == std::string_view::npos ? comma : comma - start));
+        ++count;
+        if (comma == std::string_view::npos) return count;
+        start = comma + 1;
+      }
     }
-    if (too_many || count != 3 || columns[0] != "curve" || columns[1] != "x" || columns[2] != "y")
-      fail(path_, 1, "header must be 'curve,x,y', found " + excerpt(header));
+    std::size_t count = 0, i = 0;
+    while (true) {
+      while (i < line.size() && is_blank(line[i])) ++i;
+      std::string_view field;
+      if (i < line.size() && line[i] == '"') {
+        const std::size_t open = i++;
+        std::string& text = unquoted_[std::min<std::size_t>(count, 3)];
+        text.clear();
+        bool closed = false;
+        while (!closed) {
+          const std::size_t quote = line.find('"', i);
+          if (quote == std::string_view::npos) break;
+          text.append(line.substr(i, quote - i));
+          if (quote + 1 < line.size() && line[quote + 1] == '"') {
+            text += '"';
+            i = quote + 2;
+          } else {
+            i = quote + 1;
+            closed = true;
+          }
+        }
+        if (!closed)
+          fail(path_, line_number_, "field " + std::to_string(count + 1) + ": the quote opened at " +
+                                        quoted_excerpt(line.substr(open)) +
+                                        " does not close on its line (a quoted field may not hold a line break)");
+        while (i < line.size() && is_blank(line[i])) ++i;
+        if (i < line.size() && line[i] != ',')
+          fail(path_, line_number_, "field " + std::to_string(count + 1) + ": text after the closing quote: " +
+                                        quoted_excerpt(line.substr(i, line.find(',', i) - i)));
+        field = trimmed(text);
+      } else {
+        const std::size_t comma = line.find(',', i);
+        field = trimmed(line.substr(i, comma == std::string_view::npos ? comma : comma - i));
+        i = comma == std::string_view::npos ? line.size() : comma;
+      }
+      if (count < 3) fields_[count] = field;
+      ++count;
+      if (i >= line.size()) return count;
+      ++i;  // the comma
+    }
   }
 
   PointRow parse_row(std::string_view line) {
-    const std::size_t comma1 = line.find(',');
-    const std::size_t comma2 = comma1 == std::string_view::npos ? comma1 : line.find(',', comma1 + 1);
-    if (comma2 == std::string_view::npos || line.find(',', comma2 + 1) != std::string_view::npos) {
-      const std::size_t fields = 1 + static_cast<std::size_t>(std::count(line.begin(), line.end(), ','));
-      fail(path_, line_number_, "expected 3 fields (curve,x,y), found " + std::to_string(fields) + ": " + excerpt(line));
-    }
+    const std::size_t count = split(line);
+    if (count != 3)
+      fail(path_, line_number_, "expected 3 fields (curve,x,y), found " + std::to_string(count) + ": " + quoted_excerpt(line));
 
     PointRow row;
     const char* reason = "";
-    row.curve = lookup_.find(trimmed(line.substr(0, comma1)), reason);
+    row.curve = lookup_.find(fields_[0], reason);
 
-    const Parsed x = parse_coordinate(trimmed(line.substr(comma1 + 1, comma2 - comma1 - 1)), row.point.x);
-    const Parsed y = parse_coordinate(trimmed(line.substr(comma2 + 1)), row.point.y);
+    const Parsed x = parse_coordinate(fields_[1], row.point.x);
+    const Parsed y = parse_coordinate(fields_[2], row.point.y);
     // The first problem in column order is the one reported.
     if (row.curve < 0) {
       row.reason = reason;
@@ -280,6 +331,8 @@ class CsvPointReader final : public PointReader {
   bool at_end_ = false;
   std::size_t line_number_ = 0;
   std::size_t first_blank_line_ = 0;  // of the blank lines since the last row; 0: none
+  std::string_view fields_[3];          // of the line last split
+  std::string unquoted_[4];             // quoted fields without their quotes; [3]: fields past the third
   CurveLookup lookup_;
   ReadProgress progress_;
 };

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 #include <system_error>
@@ -20,6 +21,7 @@
 #include "bezinv/io.hpp"
 #include "io_npy.hpp"
 #include "io_point_readers.hpp"
+#include "io_quote.hpp"
 
 namespace bezinv {
 namespace {
@@ -31,6 +33,15 @@ static_assert(std::endian::native == std::endian::little, "the .npy readers assu
 
 [[noreturn]] void fail_header(const std::string& path, const std::string& problem) {
   throw InputError(path + ": header: " + problem);
+}
+
+std::string decimal(unsigned __int128 value) {
+  std::string digits;
+  do {
+    digits.insert(digits.begin(), static_cast<char>('0' + static_cast<int>(value % 10)));
+    value /= 10;
+  } while (value != 0);
+  return digits;
 }
 
 // An open .npy file, its header read and the file positioned at the data.
@@ -54,20 +65,27 @@ class NpyFile {
   std::FILE* file() const { return file_; }
   const std::string& path() const { return path_; }
 
-  // The file holds exactly `bytes` of data after the header (checked when the size is known: a
-  // regular file; a pipe is checked as it is read).
-  void expect_data_bytes(std::uint64_t bytes) const {
+  // The data of `rows` rows of `row_bytes` each, in bytes. The file must hold exactly that after
+  // the header (checked when the size is known: a regular file; a pipe is checked as it is read).
+  // The shape comes from the file, so the product is computed in 128 bits: shape (2^60, 2) must
+  // be refused for its size, not wrap around to a small one.
+  std::uint64_t expect_data(std::uint64_t rows, std::uint64_t row_bytes) const {
+    const unsigned __int128 needed = static_cast<unsigned __int128>(rows) * row_bytes;
+    const std::string needs = "shape " + shape_text(header_.shape) + " needs " + decimal(needed) + " bytes after the header";
     std::error_code no_size;
-    if (!std::filesystem::is_regular_file(path_, no_size)) return;
-    const std::uintmax_t size = std::filesystem::file_size(path_, no_size);
-    if (no_size) return;
-    const std::uint64_t found = size >= header_.data_offset ? size - header_.data_offset : 0;
-    if (found < bytes)
-      throw InputError(path_ + ": data: truncated: shape " + shape_text(header_.shape) + " needs " +
-                       std::to_string(bytes) + " bytes after the header, found " + std::to_string(found));
+    const bool regular = std::filesystem::is_regular_file(path_, no_size);
+    const std::uintmax_t size = regular ? std::filesystem::file_size(path_, no_size) : 0;
+    const bool known = regular && !no_size;
+    const std::uint64_t found = known && size >= header_.data_offset ? size - header_.data_offset : 0;
+    if (needed > std::numeric_limits<std::uint64_t>::max() - header_.data_offset)
+      throw InputError(path_ + ": data: " + needs + (known ? ", the file has " + std::to_string(found) : ", more than any file holds"));
+    const std::uint64_t bytes = static_cast<std::uint64_t>(needed);
+    if (!known) return bytes;
+    if (found < bytes) throw InputError(path_ + ": data: truncated: " + needs + ", the file has " + std::to_string(found));
     if (found > bytes)
       throw InputError(path_ + ": data: " + std::to_string(found - bytes) + " bytes after the end of the " +
                        shape_text(header_.shape) + " array");
+    return bytes;
   }
 
  private:
@@ -94,14 +112,13 @@ class NpyPointReader final : public PointReader {
   NpyPointReader(const std::string& path, const std::vector<Curve>& curves, const CurveSelection& selection)
       : points_(path), curve_count_(curves.size()) {
     const NpyHeader& header = points_.header();
-    if (header.descr != "'<f8'") fail_header(path, "dtype " + header.descr + " is not '<f8' (float64)");
+    if (header.descr != "'<f8'") fail_header(path, "dtype " + escaped_excerpt(header.descr) + " is not '<f8' (float64)");
     if (header.fortran_order) fail_header(path, "fortran_order is True; only C order is read");
     if (header.shape.size() != 2 || header.shape[1] != 2)
       fail_header(path, "shape " + shape_text(header.shape) + " is not (N, 2)");
     total_ = header.shape[0];
-    points_.expect_data_bytes(total_ * 16);
     progress_.points_total = total_;
-    progress_.bytes_total = header.data_offset + total_ * 16;
+    progress_.bytes_total = header.data_offset + points_.expect_data(total_, 16);
 
     if (!selection.curve.empty() && !selection.index_path.empty())
       throw InputError(path + ": give --curve or --curve-index, not both");
@@ -113,13 +130,13 @@ class NpyPointReader final : public PointReader {
       const std::string& index_path = selection.index_path;
       if (index_header.descr == "'<i4'") index_bytes_ = 4;
       else if (index_header.descr == "'<i8'") index_bytes_ = 8;
-      else fail_header(index_path, "dtype " + index_header.descr + " is not '<i4' or '<i8' (int32, int64)");
+      else fail_header(index_path, "dtype " + escaped_excerpt(index_header.descr) + " is not '<i4' or '<i8' (int32, int64)");
       // A 1-D array is the same in either order.
       if (index_header.shape.size() != 1) fail_header(index_path, "shape " + shape_text(index_header.shape) + " is not (N,)");
       if (index_header.shape[0] != total_)
         fail_header(index_path, "shape " + shape_text(index_header.shape) + " does not match the " +
                                     std::to_string(total_) + " points of " + path);
-      indices_->expect_data_bytes(total_ * index_bytes_);
+      indices_->expect_data(total_, index_bytes_);
     } else {
       throw InputError(path + ": a .npy of points needs --curve ID or --curve-index FILE.npy to name the curves");
     }

@@ -159,7 +159,7 @@ TEST_F(NpyPoints, HeaderErrorsNameTheFileAndTheField) {
   expect_refused("flat.npy", npy_file(dict("'<f8'", "(6,)"), data), a, {"flat.npy: header: shape (6,) is not (N, 2)"});
   expect_refused("wide.npy", npy_file(dict("'<f8'", "(2, 3)"), data), a, {"wide.npy: header: shape (2, 3) is not (N, 2)"});
   expect_refused("short.npy", npy_file(dict("'<f8'", "(4, 2)"), data), a,
-                 {"short.npy: data: truncated", "(4, 2)", "needs 64 bytes", "found 48"});
+                 {"short.npy: data: truncated", "(4, 2)", "needs 64 bytes", "the file has 48"});
   expect_refused("long.npy", npy_file(dict("'<f8'", "(2, 2)"), data), a, {"long.npy: data: 16 bytes after the end"});
   expect_refused("nodescr.npy", npy_file("{'fortran_order': False, 'shape': (3, 2), }", data), a,
                  {"nodescr.npy: header: missing 'descr'"});

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <initializer_list>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -119,7 +120,9 @@ TEST_F(IoCurvesJson, NumberOverflowNamesTheField) {
 
 TEST_F(IoCurvesJson, RefusesAMissingOrEmptyCurveList) {
   expect_refused("[1, 2]", {"expected an object"});
-  expect_refused(R"({"curve": []})", {"curves: missing"});
+  expect_refused("{}", {"curves: missing"});
+  // A misspelt "curves" is named as such, not only as a missing list.
+  expect_refused(R"({"curve": []})", {"\"curve\": unknown field"});
   expect_refused(R"({"curves": {"id": "a"}})", {"curves: expected an array, found an object"});
   expect_refused(R"({"curves": []})", {"curves: empty list"});
 }
@@ -297,6 +300,47 @@ TEST_F(IoPointsCsv, AcceptsCrlfBomSpacedHeaderAndATrailingBlankLine) {
   EXPECT_EQ(read("curve,x,y\n").size(), 0u);       // header only: no points, not an error
 }
 
+TEST_F(IoPointsCsv, ReadsRfc4180QuotedFieldsLikeTheirUnquotedValues) {
+  // Spreadsheets and csv.QUOTE_ALL writers quote every field, header included.
+  const auto quoted = read("\"curve\",\"x\",\"y\"\n"
+                           "\"a\",\"2\",\"1.5\"\n"
+                           "\"b\" , \" -1e-3 \",\"+4\"\n"  // blanks outside and inside the quotes
+                           "\"7\",3,\"4\"\n"                 // quoted and bare fields mixed
+                           "\"1\",\"5\",6\r\n");
+  const auto bare = read("curve,x,y\na,2,1.5\nb,-1e-3,+4\n7,3,4\n1,5,6\n");
+  ASSERT_EQ(quoted.size(), bare.size());
+  for (std::size_t i = 0; i < bare.size(); ++i) {
+    EXPECT_EQ(quoted[i].curve, bare[i].curve) << "row " << i;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(quoted[i].point.x), std::bit_cast<std::uint64_t>(bare[i].point.x)) << "row " << i;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(quoted[i].point.y), std::bit_cast<std::uint64_t>(bare[i].point.y)) << "row " << i;
+    EXPECT_STREQ(quoted[i].reason, "") << "row " << i;
+  }
+}
+
+TEST_F(IoPointsCsv, QuotedCommasAndDoubledQuotesStayInTheirField) {
+  // Each row has three fields: a comma or a doubled quote inside quotes is text, so these rows
+  // are per-row problems (no id has commas or quotes), not a wrong field count for the file.
+  const auto rows = read("curve,x,y\n"
+                         "\"a,b\",1,2\n"         // 0 an id with a comma
+                         "\"a\"\"\",1,2\n"       // 1 the id a"
+                         "a,\"1,5\",2\n"         // 2 a decimal comma
+                         "a,1,\"2\"\"\"\n"       // 3 2"
+                         "\"\",1,2\n"            // 4 empty quoted id
+                         "a,\"\",2\n"            // 5 empty quoted x
+                         "\"\"\"\"\"\",1,2\n"    // 6 the id ""
+                         "a\"b,1,2\n"            // 7 a quote inside a bare field is text
+                         "\"a\",\"1\",\"2\"\n");  // 8 good
+  const char* const expected[] = {"unknown curve id", "unknown curve id", "x is not a number", "y is not a number",
+                                  "missing curve id", "x is not a number", "unknown curve id", "unknown curve id", ""};
+  ASSERT_EQ(rows.size(), std::size(expected));
+  for (std::size_t i = 0; i < rows.size(); ++i) EXPECT_STREQ(rows[i].reason, expected[i]) << "row " << i;
+  EXPECT_EQ(rows[8].curve, 0);
+  EXPECT_EQ(rows[8].point.x, 1.0);
+  // Commas inside quotes do not count as separators; outside they do.
+  expect_refused("curve,x,y\n\"a\",\"1\",\"2\",\"3,4\"\n", {":2:", "expected 3 fields (curve,x,y), found 4"});
+  expect_refused("\"curve,x\",y\n", {":1:", "header must be 'curve,x,y'"});
+}
+
 TEST_F(IoPointsCsv, RefusesUnreadableOrEmptyFiles) {
   const std::string missing = scratch.path("no-such.csv");
   expect_input_error([&] { read_points_csv(missing, curves); }, {missing, "cannot read"});
@@ -309,7 +353,7 @@ TEST_F(IoPointsCsv, RefusesUnreadableOrEmptyFiles) {
 }
 
 TEST_F(IoPointsCsv, RefusesAMissingOrWrongHeader) {
-  expect_refused("a,1,2\nb,3,4\n", {":1:", "header must be 'curve,x,y'", "'a,1,2'"});
+  expect_refused("a,1,2\nb,3,4\n", {":1:", "header must be 'curve,x,y'", "\"a,1,2\""});
   expect_refused("curve,x\na,1\n", {":1:", "header"});
   expect_refused("curve,x,y,z\na,1,2,3\n", {":1:", "header"});
   expect_refused("curve,y,x\na,1,2\n", {":1:", "header"});
