@@ -118,14 +118,6 @@ int run_invert(const InvertArguments& arguments) {
   check_output_directory(arguments.out_path);
 
   const std::vector<bezinv::Curve> curves = bezinv::read_curves_json(arguments.curves_path);
-  std::vector<bezinv::InversionPlan> plans;
-  try {
-    plans = bezinv::make_plans(curves, arguments.threads);
-  } catch (const bezinv::PlansError& e) {
-    // read_curves_json already validated the curve; name it anyway should the plan refuse it.
-    throw bezinv::InputError(arguments.curves_path + ": curves[" + std::to_string(e.index) + "] (id \"" +
-                             curves[e.index].id + "\"): " + e.what());
-  }
 
   bezinv::InvertOptions options;
   options.relative_tolerance = arguments.relative_tolerance;
@@ -138,8 +130,15 @@ int run_invert(const InvertArguments& arguments) {
   bezinv::StreamSummary summary;
   {
     ProgressLine progress;
-    summary = bezinv::invert_stream(*reader, *writer, plans, options, arguments.chunk_points,
-                                    [&](const bezinv::ReadProgress& p) { progress.update(p); });
+    // Plans are built as the points need them (invert_stream).
+    try {
+      summary = bezinv::invert_stream(*reader, *writer, curves, options, arguments.chunk_points,
+                                      [&](const bezinv::ReadProgress& p) { progress.update(p); });
+    } catch (const bezinv::PlansError& e) {
+      // read_curves_json already validated the curve; name it anyway should the plan refuse it
+      // (the CurveError's text quotes the id, escaped).
+      throw bezinv::InputError(arguments.curves_path + ": curves[" + std::to_string(e.index) + "]: " + e.what());
+    }
     writer->commit();
   }
 

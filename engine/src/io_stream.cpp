@@ -1,6 +1,7 @@
 // invert_stream: reader -> invert -> writer, one chunk at a time (bezinv/io.hpp). Memory is the
 // chunk's rows, points and results, whatever the size of the input.
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "bezinv/io.hpp"
@@ -10,11 +11,12 @@ namespace {
 
 constexpr std::size_t kProgressSlice = std::size_t{1} << 16;
 
-}  // namespace
-
-StreamSummary invert_stream(PointReader& reader, ResultWriter& writer, std::span<const InversionPlan> plans,
-                            const InvertOptions& options, std::size_t chunk_points,
-                            const std::function<void(const ReadProgress&)>& on_progress) {
+// The loop of both invert_stream overloads; prepare(curve_of) is called for each chunk before it
+// is inverted, with the chunk's curve indices.
+template <class Prepare>
+StreamSummary stream(PointReader& reader, ResultWriter& writer, std::span<const InversionPlan> plans,
+                     const InvertOptions& options, std::size_t chunk_points,
+                     const std::function<void(const ReadProgress&)>& on_progress, Prepare&& prepare) {
   chunk_points = std::max<std::size_t>(chunk_points, 1);
   std::vector<PointRow> rows(chunk_points);
   std::vector<int> curve_of(chunk_points);
@@ -32,6 +34,7 @@ StreamSummary invert_stream(PointReader& reader, ResultWriter& writer, std::span
         results[i].reason = rows[i].reason;
       }
     }
+    prepare(std::span<const int>(curve_of).first(count));
     // Inverted in slices so the progress callback hears more often than once a chunk (a chunk of
     // a million points can take seconds); a slice is still thousands of batches for the threads.
     ReadProgress progress = reader.progress();
@@ -47,6 +50,34 @@ StreamSummary invert_stream(PointReader& reader, ResultWriter& writer, std::span
     summary.points += count;
     writer.write(answered);
   }
+  return summary;
+}
+
+}  // namespace
+
+StreamSummary invert_stream(PointReader& reader, ResultWriter& writer, std::span<const InversionPlan> plans,
+                            const InvertOptions& options, std::size_t chunk_points,
+                            const std::function<void(const ReadProgress&)>& on_progress) {
+  return stream(reader, writer, plans, options, chunk_points, on_progress, [](std::span<const int>) {});
+}
+
+StreamSummary invert_stream(PointReader& reader, ResultWriter& writer, std::span<const Curve> curves,
+                            const InvertOptions& options, std::size_t chunk_points,
+                            const std::function<void(const ReadProgress&)>& on_progress) {
+  std::vector<InversionPlan> plans(curves.size());
+  std::vector<std::uint8_t> built(curves.size(), 0);
+  std::vector<std::size_t> needed;
+  const auto prepare = [&](std::span<const int> curve_of) {
+    needed.clear();
+    for (const int c : curve_of)
+      if (c >= 0 && !built[static_cast<std::size_t>(c)]) {
+        built[static_cast<std::size_t>(c)] = 1;
+        needed.push_back(static_cast<std::size_t>(c));
+      }
+    if (!needed.empty()) make_plans(curves, needed, plans, options.threads);
+  };
+  StreamSummary summary = stream(reader, writer, plans, options, chunk_points, on_progress, prepare);
+  for (const std::uint8_t b : built) summary.plans_built += b;
   return summary;
 }
 

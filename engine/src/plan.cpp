@@ -195,14 +195,15 @@ InversionPlan make_plan(const Curve& given) {
   return plan;
 }
 
-std::vector<InversionPlan> make_plans(std::span<const Curve> curves, int threads) {
-  std::vector<InversionPlan> plans(curves.size());
+void make_plans(std::span<const Curve> curves, std::span<const std::size_t> indices, std::span<InversionPlan> plans,
+                int threads) {
   std::mutex mutex;
   std::optional<PlansError> first_error;  // of the lowest index, whichever thread meets it first
   tbb::task_arena arena(threads > 0 ? threads : int{tbb::task_arena::automatic});
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, curves.size()), [&](const auto& range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, indices.size()), [&](const auto& range) {
+      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+        const std::size_t i = indices[k];
         try {
           plans[i] = make_plan(curves[i]);
         } catch (const CurveError& e) {
@@ -213,6 +214,13 @@ std::vector<InversionPlan> make_plans(std::span<const Curve> curves, int threads
     });
   });
   if (first_error) throw *first_error;
+}
+
+std::vector<InversionPlan> make_plans(std::span<const Curve> curves, int threads) {
+  std::vector<InversionPlan> plans(curves.size());
+  std::vector<std::size_t> all(curves.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  make_plans(curves, all, plans, threads);
   return plans;
 }
 

@@ -107,6 +107,7 @@ constexpr std::size_t kDefaultChunkPoints = std::size_t{1} << 20;
 struct StreamSummary {
   std::uint64_t points = 0;
   std::array<std::uint64_t, 6> by_status{};  // indexed by Status
+  std::uint64_t plans_built = 0;               // curves whose plan was built (the curves overload)
 };
 
 // read a chunk -> invert -> write its results, until the reader is done. Rows the reader rejected
@@ -114,6 +115,14 @@ struct StreamSummary {
 // inverted and at the end of every chunk, with `points` = points inverted so far (bytes: read so
 // far). Does not commit: the caller does when everything succeeded.
 StreamSummary invert_stream(PointReader& reader, ResultWriter& writer, std::span<const InversionPlan> plans,
+                            const InvertOptions& options, std::size_t chunk_points = kDefaultChunkPoints,
+                            const std::function<void(const ReadProgress&)>& on_progress = {});
+
+// The same from the curves (validated): each curve's plan is built when the first chunk with a
+// point of it arrives, with the other curves new to that chunk in parallel, so a file of 20,000
+// curves inverted for two points builds two plans. Throws PlansError (plan.hpp) for a curve whose
+// plan cannot be built.
+StreamSummary invert_stream(PointReader& reader, ResultWriter& writer, std::span<const Curve> curves,
                             const InvertOptions& options, std::size_t chunk_points = kDefaultChunkPoints,
                             const std::function<void(const ReadProgress&)>& on_progress = {});
 

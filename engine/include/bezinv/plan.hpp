@@ -90,6 +90,12 @@ InversionPlan make_plan(const Curve& curve);
 // in order. If curves fail validate(), throws PlansError for the first of them.
 std::vector<InversionPlan> make_plans(std::span<const Curve> curves, int threads = 0);
 
+// The plans of curves[i] for each i in `indices` only, into plans[i] (plans.size() ==
+// curves.size(); the others are left as they are), in parallel: a job needs the plans of the
+// curves its points name, not of every curve in the file. Throws PlansError as make_plans.
+void make_plans(std::span<const Curve> curves, std::span<const std::size_t> indices, std::span<InversionPlan> plans,
+                int threads = 0);
+
 class PlansError : public CurveError {
  public:
   PlansError(std::size_t index, const CurveError& error) : CurveError(error), index(index) {}
