@@ -57,9 +57,10 @@ namespace {
 
 using Coefficients = std::array<double, kMaxDegree + 1>;
 
-// The tolerance on |P(t) - P0| in normalized units.
+// The tolerance on |P(t) - P0| in normalized units: relative to the curve's size, never below the
+// resolution of its coordinates.
 double normalized_tolerance(const InversionPlan& plan, const InvertOptions& options) {
-  return options.relative_tolerance * plan.diagonal / plan.scale;
+  return std::max(options.relative_tolerance * plan.normalized_diagonal, plan.normalized_resolution);
 }
 
 // Points per batch (see "The pipeline" below).

@@ -92,20 +92,27 @@ InversionPlan make_plan(const Curve& given) {
   double lo[2] = {pts[0][0], pts[0][1]}, hi[2] = {lo[0], lo[1]};
   for (const auto& p : pts)
     for (int k = 0; k < 2; ++k) { lo[k] = std::min(lo[k], p[k]); hi[k] = std::max(hi[k], p[k]); }
-  plan.diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
-  plan.centre = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])};
-  if (plan.diagonal > 0 && std::isfinite(plan.diagonal)) {
+  // In halves, so that a box as wide as the doubles go does not overflow: the diagonal may then be
+  // inf, but its half, the centre and the scale are finite.
+  const double half_diagonal = std::hypot(0.5 * hi[0] - 0.5 * lo[0], 0.5 * hi[1] - 0.5 * lo[1]);
+  plan.diagonal = 2 * half_diagonal;
+  plan.centre = {0.5 * lo[0] + 0.5 * hi[0], 0.5 * lo[1] + 0.5 * hi[1]};
+  if (half_diagonal > 0) {
     // diagonal = m 2^e with m in [0.5, 1); e clamped so that 2^-e is a double too (it is for
-    // diagonals from 1e-301 to the largest double, where the clamp does nothing).
+    // diagonals from 1e-301 to the largest double, where the clamp does nothing; past it, the
+    // scale 2^1023 leaves the normalized curve a few units wide).
     int e = 0;
-    std::frexp(plan.diagonal, &e);
-    e = std::clamp(e, -1000, 1000);
+    std::frexp(half_diagonal, &e);
+    e = std::clamp(e + 1, -1000, 1023);
     plan.scale = std::ldexp(1.0, e);
     plan.inverse_scale = std::ldexp(1.0, -e);
-  } else if (plan.diagonal > 0) {  // the box overflows: everything scales to 0, the curve is unusable
-    plan.scale = plan.diagonal;
-    plan.inverse_scale = 0.0;
   }
+  plan.normalized_diagonal = 2 * (half_diagonal * plan.inverse_scale);
+  // The coordinates' own resolution: a point made on the curve and rounded to doubles is within
+  // an ulp of it, wherever the curve sits (a 1-unit curve at 1e12 has ulps of 1.2e-4).
+  const double magnitude = std::max({std::abs(lo[0]), std::abs(hi[0]), std::abs(lo[1]), std::abs(hi[1])});
+  plan.normalized_resolution =
+      kResolutionUlps * (std::nextafter(magnitude, std::numeric_limits<double>::infinity()) - magnitude) * plan.inverse_scale;
 
   // Rotation (one denominator only): turn the principal axis of the control points to 45 degrees,
   // so neither coordinate of a straight segment is constant (a constant x makes p = X - x0 W
@@ -114,7 +121,8 @@ InversionPlan make_plan(const Curve& given) {
   if (plan.common_denominator) {
     double sxx = 0, syy = 0, sxy = 0;
     for (const auto& p : pts) {  // in units of the scale, so the squares cannot overflow
-      const double dx = (p[0] - plan.centre[0]) * plan.inverse_scale, dy = (p[1] - plan.centre[1]) * plan.inverse_scale;
+      const double dx = p[0] * plan.inverse_scale - plan.centre[0] * plan.inverse_scale;
+      const double dy = p[1] * plan.inverse_scale - plan.centre[1] * plan.inverse_scale;
       sxx += dx * dx; syy += dy * dy; sxy += dx * dy;
     }
     const double principal = 0.5 * std::atan2(2 * sxy, sxx - syy);
@@ -129,19 +137,22 @@ InversionPlan make_plan(const Curve& given) {
   const double xs = max_abs(curve.x_den), ys = max_abs(curve.y_den);
   Poly xn(n0 + 1), xd(n0 + 1), yn(n0 + 1), yd(n0 + 1);
   double magnitude_x = 0, magnitude_y = 0;  // coefficient size before translation, normalized units
+  // Scaled first (by the power of two 1/scale: the same bits as scaling last), so that coefficients
+  // near the largest double do not overflow in the translation or the rotation.
+  const double s = plan.inverse_scale;
+  const double cx = plan.centre[0] * s, cy = plan.centre[1] * s;
   for (int i = 0; i <= n0; ++i) {
-    magnitude_x = std::max(magnitude_x, (std::abs(curve.x_num[i]) + std::abs(plan.centre[0] * curve.x_den[i])) / xs);
-    magnitude_y = std::max(magnitude_y, (std::abs(curve.y_num[i]) + std::abs(plan.centre[1] * curve.y_den[i])) / ys);
-    const double X = curve.x_num[i] / xs - plan.centre[0] * (curve.x_den[i] / xs);
-    const double Wx = curve.x_den[i] / xs;
-    const double Y = curve.y_num[i] / ys - plan.centre[1] * (curve.y_den[i] / ys);
-    const double Wy = curve.y_den[i] / ys;
+    const double Wx = curve.x_den[i] / xs, Wy = curve.y_den[i] / ys;
+    const double ax = curve.x_num[i] / xs * s, ay = curve.y_num[i] / ys * s;
+    magnitude_x = std::max(magnitude_x, std::abs(ax) + std::abs(cx * Wx));
+    magnitude_y = std::max(magnitude_y, std::abs(ay) + std::abs(cy * Wy));
+    const double X = ax - cx * Wx, Y = ay - cy * Wy;
     if (plan.common_denominator) {
-      xn[i] = (plan.cos_rotation * X - plan.sin_rotation * Y) / plan.scale;
-      yn[i] = (plan.sin_rotation * X + plan.cos_rotation * Y) / plan.scale;
+      xn[i] = plan.cos_rotation * X - plan.sin_rotation * Y;
+      yn[i] = plan.sin_rotation * X + plan.cos_rotation * Y;
     } else {
-      xn[i] = X / plan.scale;
-      yn[i] = Y / plan.scale;
+      xn[i] = X;
+      yn[i] = Y;
     }
     xd[i] = Wx;
     yd[i] = Wy;
@@ -151,8 +162,7 @@ InversionPlan make_plan(const Curve& given) {
   // round-off level; its Bezout matrix would then have a spurious null direction (the common
   // "root at infinity") at every point. Reduce until one of them is genuinely non-zero.
   // A rotation mixes x and y, so either numerator may carry either coordinate's rounding.
-  const double magnitude_num =
-      (plan.common_denominator ? magnitude_x + magnitude_y : std::max(magnitude_x, magnitude_y)) / plan.scale;
+  const double magnitude_num = plan.common_denominator ? magnitude_x + magnitude_y : std::max(magnitude_x, magnitude_y);
   while (xn.size() > 2 && leading_coefficient_vanishes(xn, magnitude_num, kElevatedLeadingRatio) &&
          leading_coefficient_vanishes(xd, 0.0, kElevatedLeadingRatio) &&
          leading_coefficient_vanishes(yn, magnitude_num, kElevatedLeadingRatio) &&

@@ -62,11 +62,17 @@ struct InversionPlan {
   // detecting a degree drop of p and q at a given point (paper Sect. 4).
   double lead_x_num = 0, lead_x_den = 0, lead_y_num = 0, lead_y_den = 0;
 
-  // Diagonal of the bounding box of the control points (input units): tolerances are relative to it.
+  // Diagonal of the bounding box of the control points (input units): tolerances are relative to
+  // it (inf for a box wider than the largest double; normalized_diagonal is finite).
   double diagonal = 0.0;
+  double normalized_diagonal = 0.0;  // diagonal / scale
+  // The floor of the on-curve tolerance, normalized units: kResolutionUlps ulps of the largest
+  // coordinate of the box, so a point rounded to doubles from the curve counts as on it however
+  // far from the origin the curve sits.
+  double normalized_resolution = 0.0;
 
-  // False when the curve cannot be inverted by this method (improperly parametrized, or every
-  // coefficient of x or y degenerate); every point of it is then reported `failed` with `reason`.
+  // False when no point of the curve can be given one parameter (all its points coincide); every
+  // point of it is then reported `failed` with `reason`.
   bool usable = true;
   const char* reason = "";  // static text
 

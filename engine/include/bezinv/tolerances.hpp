@@ -11,6 +11,11 @@ inline constexpr int kMaxDegree = 32;
 // Default on-curve tolerance, relative to the diagonal of the bounding box of the curve's
 // control points: a point within kDefaultRelativeTolerance * diagonal of the curve counts as on it.
 inline constexpr double kDefaultRelativeTolerance = 1e-6;
+// ... but never below this many ulps of the largest coordinate of the curve's bounding box: a point
+// computed on the curve and rounded to doubles is off it by up to half an ulp per coordinate
+// (0.71 ulp), and the curve's own evaluation adds a few ulps of its size. Matters only where the
+// curve is small against its distance from the origin (a 1-unit curve at 1e12: ulp 1.2e-4).
+inline constexpr double kResolutionUlps = 4;
 
 // A second candidate parameter (self-intersection, or a root pushed towards infinity by a
 // near degree drop) is looked for in the two-dimensional near-null space of B when
