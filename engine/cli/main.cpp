@@ -8,14 +8,18 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
-#include <unistd.h>  // isatty: the progress line is for a person at a terminal only
+#include <sys/stat.h>  // stat: OUT compared with the inputs by device and inode
+#include <unistd.h>    // isatty: the progress line is for a person at a terminal only
 
 #include <CLI/CLI.hpp>
+#include <tbb/global_control.h>
 
 #include "bezinv/curve.hpp"
 #include "bezinv/invert.hpp"
@@ -36,6 +40,12 @@ namespace {
 // (nothing written), 1 anything unexpected. CLI11 uses its own codes (>= 100) for bad arguments.
 constexpr int kExitInputError = 2;
 constexpr int kExitInternalError = 1;
+
+// --threads above this is refused: far past any core count it only costs memory, and TBB fails
+// outright on absurd counts.
+constexpr long long kMaxThreads = 1024;
+// --chunk-points above this is refused: about 100 bytes a point, so 1.7 GB of buffers in flight.
+constexpr std::size_t kMaxChunkPoints = std::size_t{1} << 24;
 
 struct InvertArguments {
   std::string curves_path, points_path, out_path;
@@ -101,6 +111,54 @@ void check_output_directory(const std::string& out_path) {
   if (!directory.empty() && !std::filesystem::is_directory(directory, error))
     throw bezinv::InputError(out_path + ": cannot write: directory " + directory.string() + " does not exist");
 }
+
+// OUT must not be an input under another name (./points.csv, a symbolic or hard link): the
+// results would replace it. stat() follows links, and device + inode name the file whatever the
+// spelling. A character device may be both (a terminal as --points /dev/stdin and --out /dev/stdout).
+void check_output_is_not_an_input(const InvertArguments& arguments) {
+  struct stat out {};
+  if (::stat(arguments.out_path.c_str(), &out) != 0 || S_ISCHR(out.st_mode)) return;
+  const std::pair<const char*, const std::string*> inputs[] = {{"--curves", &arguments.curves_path},
+                                                                {"--points", &arguments.points_path},
+                                                                {"--curve-index", &arguments.selection.index_path}};
+  for (const auto& [option, path] : inputs) {
+    struct stat input {};
+    if (path->empty() || ::stat(path->c_str(), &input) != 0) continue;
+    if (input.st_dev == out.st_dev && input.st_ino == out.st_ino)
+      throw bezinv::InputError(arguments.out_path + ": --out is the same file as " + option + " " + *path +
+                               "; refusing to overwrite an input");
+  }
+}
+
+// --threads: bounded after parsing so that a count too large is an input error (exit 2) like the
+// others, whatever its size.
+int checked_threads(long long requested) {
+  if (requested > kMaxThreads)
+    throw bezinv::InputError("--threads " + std::to_string(requested) + ": at most " + std::to_string(kMaxThreads) +
+                             " (0: all cores)");
+  return static_cast<int>(requested);
+}
+
+void check_chunk_points(std::size_t chunk_points) {
+  if (chunk_points > kMaxChunkPoints)
+    throw bezinv::InputError("--chunk-points " + std::to_string(chunk_points) + ": at most " +
+                             std::to_string(kMaxChunkPoints) + " (about 100 bytes of memory per point)");
+}
+
+// With an explicit thread count, TBB's limit is raised (or lowered) to it: every arena then gets
+// the workers it asks for, and TBB prints no warning for counts above the core count.
+class ParallelismLimit {
+ public:
+  explicit ParallelismLimit(int threads) {
+    if (threads > 0) limit_.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  }
+  // tbb::global_control copies, and each copy's destructor would lift the limit.
+  ParallelismLimit(const ParallelismLimit&) = delete;
+  ParallelismLimit& operator=(const ParallelismLimit&) = delete;
+
+ private:
+  std::optional<tbb::global_control> limit_;
+};
 
 void print_summary(const InvertArguments& arguments, const bezinv::StreamSummary& summary, double seconds) {
   using bezinv::Status;
@@ -207,21 +265,24 @@ int main(int argc, char** argv) {
                    "Answer every point by the SVD (exact sigma_min/sigma_next on every row; slower)");
   const CLI::Validator non_negative([](std::string& text) { return check_count(text, 0); }, "N>=0");
   const CLI::Validator positive([](std::string& text) { return check_count(text, 1); }, "N>=1");
-  invert->add_option("--threads", invert_arguments.threads, "Worker threads (0: all cores)")
+  const std::string threads_help = "Worker threads (0: all cores; at most " + std::to_string(kMaxThreads) + ")";
+  long long invert_threads = 0;
+  invert->add_option("--threads", invert_threads, threads_help)
       ->check(non_negative)
       ->capture_default_str();
   invert->add_flag("--verbose,-v", invert_arguments.verbose, "One-line summary on stderr");
   invert
       ->add_option("--chunk-points", invert_arguments.chunk_points,
-                   "Points read, inverted and written at a time (memory ~100 bytes per point)")
+                   "Points read, inverted and written at a time (memory ~100 bytes per point; at most " +
+                       std::to_string(kMaxChunkPoints) + ")")
       ->check(positive)
       ->capture_default_str();
 
   std::size_t demo_points = 1000000;
-  int demo_threads = 0;
+  long long demo_threads = 0;
   CLI::App* demo = app.add_subcommand("demo", "Invert generated points with known parameters; report speed and accuracy");
   demo->add_option("--points", demo_points, "Number of points")->check(positive)->capture_default_str();
-  demo->add_option("--threads", demo_threads, "Worker threads (0: all cores)")
+  demo->add_option("--threads", demo_threads, threads_help)
       ->check(non_negative)
       ->capture_default_str();
 
@@ -239,7 +300,8 @@ int main(int argc, char** argv) {
   profile->add_option("--curves", profile_options.curves, "Distinct curves the points are spread over")
       ->check(positive)
       ->capture_default_str();
-  profile->add_option("--threads", profile_options.threads, "Worker threads (0: all cores)")
+  long long profile_threads = 0;
+  profile->add_option("--threads", profile_threads, threads_help)
       ->check(non_negative)
       ->capture_default_str();
   profile->add_option("--noise", profile_options.noise, "Move points off the curve by up to D x its diagonal")
@@ -258,9 +320,22 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (invert->parsed()) return run_invert(invert_arguments);
-    if (demo->parsed()) return bezinv::cli::run_demo(demo_points, demo_threads);
+    if (invert->parsed()) {
+      invert_arguments.threads = checked_threads(invert_threads);
+      check_chunk_points(invert_arguments.chunk_points);
+      check_output_is_not_an_input(invert_arguments);
+      const ParallelismLimit parallelism(invert_arguments.threads);
+      bezinv::remove_temporary_outputs_on_signals();
+      return run_invert(invert_arguments);
+    }
+    if (demo->parsed()) {
+      const int threads = checked_threads(demo_threads);
+      const ParallelismLimit parallelism(threads);
+      return bezinv::cli::run_demo(demo_points, threads);
+    }
     if (profile->parsed()) {
+      profile_options.threads = checked_threads(profile_threads);
+      const ParallelismLimit parallelism(profile_options.threads);
       profile_options.refine = !profile_no_refine;
       profile_options.fast_path = !profile_svd_only;
       profile_options.kind = profile_kind == "bezier"            ? bezinv::CurveKind::bezier

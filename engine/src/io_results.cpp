@@ -1,5 +1,5 @@
-// PointResult chunks -> OUT.csv or OUT.npy (formats in bezinv/io.hpp), through a temporary file
-// that replaces the target only at commit (io_temporary_output.hpp).
+// PointResult chunks -> OUT.csv or OUT.npy (formats in bezinv/io.hpp), through an OutputTarget
+// that publishes them only at commit (io_output_target.hpp).
 #include <algorithm>
 #include <bit>
 #include <charconv>
@@ -15,12 +15,12 @@
 
 #include "bezinv/io.hpp"
 #include "io_npy.hpp"
-#include "io_temporary_output.hpp"
+#include "io_output_target.hpp"
 
 namespace bezinv {
 namespace {
 
-using detail::TemporaryOutput;
+using detail::OutputTarget;
 
 constexpr std::string_view kHeader = "t,status,residual,t2,sigma_min,sigma_next,path,reason\n";
 
@@ -82,7 +82,7 @@ void append_row(std::string& out, const PointResult& result) {
 class CsvResultWriter final : public ResultWriter {
  public:
   CsvResultWriter(const std::string& path, int threads)
-      : output_(path), arena_(threads > 0 ? threads : tbb::task_arena::automatic), blocks_(kBlocksPerGroup) {
+      : output_(path, false), arena_(threads > 0 ? threads : tbb::task_arena::automatic), blocks_(kBlocksPerGroup) {
     output_.write(kHeader);
   }
 
@@ -106,7 +106,7 @@ class CsvResultWriter final : public ResultWriter {
   void commit() override { output_.commit(); }
 
  private:
-  TemporaryOutput output_;
+  OutputTarget output_;
   tbb::task_arena arena_;
   std::vector<std::string> blocks_;
 };
@@ -120,7 +120,7 @@ static_assert(std::endian::native == std::endian::little, "the .npy writer assum
 
 class NpyResultWriter final : public ResultWriter {
  public:
-  explicit NpyResultWriter(const std::string& path) : output_(path) {
+  explicit NpyResultWriter(const std::string& path) : output_(path, true) {
     // The count is not known yet (a CSV input is not counted ahead): a placeholder of the same
     // length, rewritten at commit.
     output_.write(detail::npy_preamble(kResultDescr, 0));
@@ -146,7 +146,7 @@ class NpyResultWriter final : public ResultWriter {
   }
 
  private:
-  TemporaryOutput output_;
+  OutputTarget output_;
   std::vector<char> records_;
   std::uint64_t rows_ = 0;
 };

@@ -1,5 +1,6 @@
 // invert_stream: reader -> invert -> writer, one chunk at a time (bezinv/io.hpp). Memory is the
-// chunk's rows, points and results, whatever the size of the input.
+// chunk's rows, points and results, whatever the size of the input, and never more than the
+// input needs.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -11,6 +12,33 @@ namespace {
 
 constexpr std::size_t kProgressSlice = std::size_t{1} << 16;
 
+// A chunk's buffers start this small and double while the input keeps filling them, so a large
+// chunk_points costs memory only when the input has that many points.
+constexpr std::size_t kFirstChunkPoints = std::size_t{1} << 16;
+
+// Reads up to `limit` rows into the front of `rows`, growing it as needed; returns how many.
+std::size_t read_chunk(PointReader& reader, std::vector<PointRow>& rows, std::size_t limit) {
+  std::size_t count = 0;
+  while (true) {
+    if (count == rows.size()) {
+      if (rows.size() >= limit) return count;
+      std::size_t wanted = std::min(limit, std::max(kFirstChunkPoints, 2 * rows.size()));
+      // A reader that knows its total (.npy) tells how much is left: no more than that is allocated.
+      const ReadProgress progress = reader.progress();
+      if (progress.points_total > 0) {
+        const std::uint64_t left = progress.points_total > progress.points ? progress.points_total - progress.points : 0;
+        if (left == 0) return count;
+        wanted = static_cast<std::size_t>(std::min<std::uint64_t>(wanted, count + left));
+      }
+      rows.resize(wanted);
+    }
+    const std::size_t asked = rows.size() - count;
+    const std::size_t got = reader.read(std::span(rows).subspan(count));
+    count += got;
+    if (got < asked) return count;  // fewer than asked: the end of the input
+  }
+}
+
 // The loop of both invert_stream overloads; prepare(curve_of) is called for each chunk before it
 // is inverted, with the chunk's curve indices.
 template <class Prepare>
@@ -18,12 +46,15 @@ StreamSummary stream(PointReader& reader, ResultWriter& writer, std::span<const 
                      const InvertOptions& options, std::size_t chunk_points,
                      const std::function<void(const ReadProgress&)>& on_progress, Prepare&& prepare) {
   chunk_points = std::max<std::size_t>(chunk_points, 1);
-  std::vector<PointRow> rows(chunk_points);
-  std::vector<int> curve_of(chunk_points);
-  std::vector<Point> points(chunk_points);
-  std::vector<PointResult> results(chunk_points);
+  std::vector<PointRow> rows;
+  std::vector<int> curve_of;
+  std::vector<Point> points;
+  std::vector<PointResult> results;
   StreamSummary summary;
-  while (const std::size_t count = reader.read(rows)) {
+  while (const std::size_t count = read_chunk(reader, rows, chunk_points)) {
+    curve_of.resize(count);
+    points.resize(count);
+    results.resize(count);
     for (std::size_t i = 0; i < count; ++i) {
       curve_of[i] = rows[i].curve;
       points[i] = rows[i].point;

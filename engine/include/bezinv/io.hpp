@@ -81,10 +81,12 @@ class PointReader {
 std::unique_ptr<PointReader> open_points(const std::string& path, const std::vector<Curve>& curves,
                                          const CurveSelection& selection = {});
 
-// Results in input order, a chunk at a time, into a temporary file beside the target; commit()
-// renames it over the target (atomic within a directory). Destroyed without commit() (an
-// exception on the way), it removes the temporary and leaves the target as it was.
-// Failures throw InputError "<path>: cannot write: <reason>".
+// Results in input order, a chunk at a time. A regular file (or one reached by a symbolic link)
+// is written to a temporary file beside it that commit() renames over it (atomic within a
+// directory; the old file's mode and, for root, owner carry over) or, when it has other hard
+// links, copies into it in place. Destroyed without commit() (an exception on the way), the
+// writer removes the temporary and leaves the target as it was. A character device or FIFO is
+// written straight through. Failures throw InputError "<path>: cannot write: <reason>".
 class ResultWriter {
  public:
   virtual ~ResultWriter() = default;
@@ -97,6 +99,10 @@ class ResultWriter {
 // round-trip precision), `nan` when absent. `threads` formats CSV rows in parallel (0: all cores).
 // The .npy header is written with room for any row count and rewritten with the count at commit.
 std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads = 0);
+
+// For commands: SIGINT, SIGTERM and SIGHUP (unless ignored) remove the temporary file of every
+// open ResultWriter, then end the process by the same signal. Call once, before open_results.
+void remove_temporary_outputs_on_signals();
 
 // OUT.csv at once (small results, tests): open_results, write, commit.
 void write_results_csv(const std::string& path, std::span<const PointResult> results);
