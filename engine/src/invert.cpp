@@ -381,6 +381,16 @@ double bezout_term_size(const InversionPlan& plan, double u0, double v0) {
   return size;
 }
 
+// Whether B(u0, v0), whose largest singular value is sigma_1, vanishes (kVanishingBezoutRatio):
+// decided first against a bound of the terms' size from the plan's largest entries, which settles
+// every point of a curve that is not a line without a pass over B.
+bool bezout_vanishes(const InversionPlan& plan, double u0, double v0, double sigma_1) {
+  const auto& m = plan.bezout_max_entries;
+  const double bound = m[0] + std::abs(u0) * m[1] + std::abs(v0) * m[2] + std::abs(u0 * v0) * m[3];
+  if (sigma_1 > kVanishingBezoutRatio * bound) return false;
+  return !(sigma_1 > kVanishingBezoutRatio * bezout_term_size(plan, u0, v0));
+}
+
 // The real roots of a Bernstein polynomial r of degree n >= 1 (into t, room for n): the t with
 // beta(t) orthogonal to r's coefficients, i.e. in the n-dimensional space r^perp, found as from
 // any null space (parameters_from_null_space).
@@ -436,7 +446,7 @@ void decide(const InversionPlan& plan, double u0, double v0, const Candidate& ma
   const bool settled = count > 0 && candidates[0].on_segment && !look_for_second && !drop;
   if (!settled) {
     if (drop) add(sylvester_parameter(pq), Path::sylvester);
-    if (n >= 2 && !(sigma[0] > kVanishingBezoutRatio * bezout_term_size(plan, u0, v0))) {
+    if (n >= 2 && bezout_vanishes(plan, u0, v0, sigma[0])) {
       // B vanishes: p and q are proportional, the curve is a straight line through the point
       // (traced at degree n), and each real root of p (or q) is a parameter.
       std::array<double, kMaxDegree> t;

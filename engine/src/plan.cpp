@@ -184,6 +184,12 @@ InversionPlan make_plan(const Curve& given) {
   bezout_matrix(xd, yn, plan.Bx);
   bezout_matrix(xn, yd, plan.By);
   if (!plan.common_denominator) bezout_matrix(xd, yd, plan.Bxy);
+  for (int i = 0; i < nn; ++i) {
+    plan.bezout_max_entries[0] = std::max(plan.bezout_max_entries[0], std::abs(plan.B0[i]));
+    plan.bezout_max_entries[1] = std::max(plan.bezout_max_entries[1], std::abs(plan.Bx[i]));
+    plan.bezout_max_entries[2] = std::max(plan.bezout_max_entries[2], std::abs(plan.By[i]));
+    plan.bezout_max_entries[3] = std::max(plan.bezout_max_entries[3], std::abs(plan.Bxy[i]));
+  }
 
   // The nearest-point search's samples P(k / S): the same for every point of the curve.
   const int samples = detail::nearest_sample_count(n);

@@ -44,6 +44,8 @@ struct InversionPlan {
 
   // B(u0, v0) = B0 - u0 Bx - v0 By + u0 v0 Bxy in normalized coordinates (n x n, row-major).
   std::vector<double> B0, Bx, By, Bxy;
+  // max |entry| of B0, Bx, By, Bxy: a bound of B's terms before they cancel, for any point.
+  std::array<double, 4> bezout_max_entries{0.0, 0.0, 0.0, 0.0};
 
   // The nearest-point search's samples of the normalized curve, P(k / S) for k = 0..S as
   // (x, y) pairs (engine/src/refine.hpp): computed once here instead of for every off-curve point.
