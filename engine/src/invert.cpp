@@ -501,7 +501,19 @@ void decide(const InversionPlan& plan, double u0, double v0, const Candidate& ma
   }
   if (first) return report(*first, Status::ok);
   for (int i = 0; i < count; ++i)
-    if (candidates[i].on_curve) return report(candidates[i], Status::outside_segment);
+    if (candidates[i].on_curve) {
+      // The extension passes within the tolerance; the segment may too, at a parameter no
+      // candidate led to (a huge end weight holds the segment near P(0) over a range of t that
+      // B's null vector does not single out). On the segment wins.
+      if (options.refine) {
+        Candidate nearest;
+        nearest.t = detail::nearest_parameter_on_segment(plan, u0, v0, std::clamp(candidates[i].t, 0.0, 1.0));
+        nearest.distance = detail::distance(plan, u0, v0, nearest.t);
+        nearest.path = Path::nearest;
+        if (nearest.distance <= tolerance) return report(nearest, Status::ok);
+      }
+      return report(candidates[i], Status::outside_segment);
+    }
 
   // Off the curve (or every algebraic candidate failed): the nearest point of the segment.
   if (!options.refine && count > 0 && std::isfinite(candidates[0].t))
@@ -880,7 +892,9 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
   // bezout_matrix): there a batch's B no longer fits in L1, and reading it back was most of the
   // seed's time. The rare lanes that go on to pass 2 or the SVD path get their B formed then,
   // compacted (form_compacted_b).
-  const bool fast_path = options.fast_path && options.refine && n >= 2 && n <= kFastPathMaxDegree;
+  // Not on a straight line: B vanishes at its points, and the kernel's estimates, relative to
+  // ||B||, would read rounding as evidence.
+  const bool fast_path = options.fast_path && options.refine && n >= 2 && n <= kFastPathMaxDegree && !plan.straight_line;
   const bool formed_b = fast_path && n >= kFormedBMinDegree;
   if (n >= 2 && !formed_b) {
     // The lower triangle only: B is symmetric and the kernels read nothing else (batch.hpp).

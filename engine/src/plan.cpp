@@ -11,6 +11,7 @@
 #include <mutex>
 #include <numbers>
 #include <optional>
+#include <vector>
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/bezout.hpp"
@@ -58,6 +59,28 @@ std::vector<std::array<double, 2>> control_points(const Curve& c) {
   pts.push_back(c.point(0.0));
   pts.push_back(c.point(1.0));
   return pts;
+}
+
+// Whether the normalized curve lies on a straight line: its distance from the line through two of
+// its points, a rational function whose numerator has degree at most 2n, vanishes at 2n + 1
+// parameters (to kVanishingBezoutRatio of the curve's size), so it vanishes everywhere.
+bool on_a_line(const InversionPlan& plan) {
+  const int count = 2 * plan.degree + 1;
+  std::vector<std::array<double, 2>> p(count);
+  for (int k = 0; k < count; ++k) p[k] = plan.normalized_point(static_cast<double>(k) / (count - 1));
+  // Through the two samples farthest apart (a turning line may come back to its start).
+  int a = 0, b = 0;
+  double widest = 0.0;
+  for (int i = 0; i < count; ++i)
+    for (int j = i + 1; j < count; ++j) {
+      const double d = std::hypot(p[j][0] - p[i][0], p[j][1] - p[i][1]);
+      if (d > widest) { widest = d; a = i; b = j; }
+    }
+  if (!(widest > 0.0)) return false;
+  const double dx = (p[b][0] - p[a][0]) / widest, dy = (p[b][1] - p[a][1]) / widest;
+  for (int k = 0; k < count; ++k)
+    if (!(std::abs((p[k][0] - p[a][0]) * dy - (p[k][1] - p[a][1]) * dx) <= kVanishingBezoutRatio)) return false;
+  return true;
 }
 
 }  // namespace
@@ -201,6 +224,7 @@ InversionPlan make_plan(const Curve& given) {
   }
 
   detail::isolation_pieces(plan);
+  plan.straight_line = n >= 2 && on_a_line(plan);
 
   if (plan.diagonal == 0.0) {
     plan.usable = false;

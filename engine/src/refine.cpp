@@ -82,6 +82,7 @@ double distance(const InversionPlan& plan, double u0, double v0, double t) {
 }
 
 Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double t0, bool stay_on_segment) {
+  constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
   if (!std::isfinite(t0)) return {t0, std::nan("")};
   double t = stay_on_segment ? std::clamp(t0, 0.0, 1.0) : t0;
   // d is |P(t) - P0| at the current t whenever `d_current`; the jet at t gives it for free.
@@ -111,15 +112,21 @@ Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double
       const double moved = std::abs(next - t);
       // The last step (kNewtonFinalStep says why), not cut short by the clamp: the distance at the
       // new t by the first-order update of the one at hand.
-      if (moved <= kNewtonFinalStep && next == t + step && slope >= 0.5 * speed2) {
-        const double s = next - t;
+      // Where the curve bends hard for its size (a tiny or huge weight makes |P''| ~ 1e24), s^2 |P''|
+      // is not below the rounding, and the update would misstate the distance: measured instead.
+      const double s = next - t;
+      if (moved <= kNewtonFinalStep && next == t + step && slope >= 0.5 * speed2 &&
+          s * s * (std::abs(j.ddx) + std::abs(j.ddy)) <= kEpsilon) {
         return {next, length(ex + j.dx * s, ey + j.dy * s)};
       }
       // Converged when the step moves t by a few ulps: d, measured at the t before it, is then
-      // |P(t) - P0| to rounding (it differs by at most |P'| 4 eps), and measuring it again at the
-      // new t would cost a third of the refinement of an on-curve point.
+      // |P(t) - P0| to rounding (it differs by at most |P'| moved), and measuring it again at the
+      // new t would cost a third of the refinement of an on-curve point; unless the curve is so
+      // fast there (|P'| ~ 1e12 next to a tiny weight) that those ulps of t move P by more than
+      // a few ulps of its size: then it is measured at the new t.
       t = next;
-      if (moved <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) return {t, d};
+      if (moved <= 4 * kEpsilon * std::max(1.0, std::abs(t)))
+        return {t, moved * moved * speed2 <= 16 * kEpsilon * kEpsilon ? d : distance(plan, u0, v0, t)};
       d_current = false;
       continue;
     }

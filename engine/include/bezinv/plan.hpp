@@ -44,6 +44,9 @@ struct InversionPlan {
 
   // B(u0, v0) = B0 - u0 Bx - v0 By + u0 v0 Bxy in normalized coordinates (n x n, row-major).
   std::vector<double> B0, Bx, By, Bxy;
+  // The curve lies on a straight line (within kVanishingBezoutRatio of its size): B vanishes at
+  // every point of it, and its points are inverted from the roots of p (engine/src/invert.cpp).
+  bool straight_line = false;
   // max |entry| of B0, Bx, By, Bxy: a bound of B's terms before they cancel, for any point.
   std::array<double, 4> bezout_max_entries{0.0, 0.0, 0.0, 0.0};
 

@@ -109,7 +109,8 @@ inline constexpr double kNewtonTrustedStep = 1e-6;
 // s^2 |P''| / 2 <= 1e-24 |P''| besides the rounding a direct evaluation has too. On-curve seeds
 // are within about 1e-14 of their root, so this takes one jet per point where the step rule alone
 // (a step of a few ulps) took two for most of them (tests/kernels/rational_newton_test.cpp and
-// the property tests' accuracy model hold with it as before).
+// the property tests' accuracy model hold with it as before). Not where s^2 |P''| exceeds eps
+// (|P''| ~ 1e24 next to a weight of 1e-12): there the distance is measured at the new t.
 inline constexpr double kNewtonFinalStep = 1e-12;
 // A larger step is halved at most this many times looking for a point no farther from P0.
 inline constexpr int kNewtonMaxHalvings = 40;

@@ -136,8 +136,9 @@ HWY_INLINE hn::Vec<D> point_distance(D d, const RationalCurve& curve, hn::Vec<D>
 //   iteration: jet at t; d = |P(t) - P0|; Newton step -f/f' (Gauss-Newton where f' <= 0), capped
 //   at max_step; a step of at most trusted_step is taken as it is (the last, with the distance by
 //   the first-order update |P - P0 + P' s|, when it moves t by at most final_step, unclamped,
-//   where f' >= |P'|^2 / 2; else converged, with the distance measured before it, when it moves t
-//   by at most 4 eps max(1, |t|)); a larger one is halved until the distance does not increase (at
+//   where f' >= |P'|^2 / 2 and s^2 (|x''| + |y''|) <= eps; else converged, with the distance
+//   measured before it, when it moves t by at most 4 eps max(1, |t|) and P by |P'| moved <= 4 eps,
+//   measured at the new t when only the first holds); a larger one is halved until the distance does not increase (at
 //   most max_halvings times; if none is found, or it does not move t, the iteration stops).
 template <int N, class D>
 HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const NewtonSettings& settings,
@@ -159,6 +160,8 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
   const V trusted = hn::Set(d, settings.trusted_step), max_step = hn::Set(d, settings.max_step);
   const V final_step = hn::Set(d, settings.final_step);
   const V four_eps = hn::Set(d, 4 * std::numeric_limits<double>::epsilon());
+  const V eps = hn::Set(d, std::numeric_limits<double>::epsilon());
+  const V sixteen_eps2 = hn::Set(d, 16 * std::numeric_limits<double>::epsilon() * std::numeric_limits<double>::epsilon());
   auto converged = [&](V moved, V t) { return hn::Le(moved, hn::Mul(four_eps, hn::Max(one, hn::Abs(t)))); };
 
   M active = hn::And(hn::Ge(t0, zero), hn::Le(t0, one));  // false for NaN; in [0,1] clamp(t0) = t0
@@ -212,16 +215,23 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
       const V moved = hn::Abs(hn::Sub(next, t));
       // The last step (settings.final_step), not cut short by the clamp: the distance at the new
       // t by the first-order update; given back where the scalar code would take it with hypot.
+      // Not where s^2 |P''| exceeds the rounding (refine.cpp): measured at the new t instead.
       const V s = hn::Sub(next, t);
-      const M last = hn::And(small, hn::And(hn::And(hn::Le(moved, final_step), hn::Eq(next, unclamped)),
-                                            hn::Ge(slope, hn::Mul(half, speed2))));
+      const M flat = hn::Le(hn::Mul(hn::Mul(s, s), hn::Add(hn::Abs(ddx), hn::Abs(ddy))), eps);
+      const M last = hn::And(flat, hn::And(small, hn::And(hn::And(hn::Le(moved, final_step), hn::Eq(next, unclamped)),
+                                                          hn::Ge(slope, hn::Mul(half, speed2)))));
       M last_plain;
       const V updated = plain_length(hn::Add(ex, hn::Mul(dx, s)), hn::Add(ey, hn::Mul(dy, s)), last_plain);
       t = hn::IfThenElse(small, next, t);
       give_back(hn::AndNot(last_plain, last));
       finish(hn::And(last, last_plain), updated);
-      // Converged: the distance at the t before this step (refine.cpp says why).
-      finish(hn::And(hn::AndNot(last, small), converged(moved, t)), dist);
+      // Converged: the distance at the t before this step (refine.cpp says why), or measured at
+      // the new t where those ulps of t move P by more than a few ulps (|P'| moved > 4 eps).
+      const M done = hn::And(hn::AndNot(last, small), converged(moved, t));
+      const M fast = hn::Gt(hn::Mul(hn::Mul(moved, moved), speed2), sixteen_eps2);
+      finish(hn::AndNot(fast, done), dist);
+      final_distance = hn::Or(final_distance, hn::And(done, fast));
+      active = hn::AndNot(hn::And(done, fast), active);
       current = hn::AndNot(small, current);
     }
 
