@@ -1,7 +1,8 @@
 #pragma once
 // An improperly parametrized curve: P(t) = Q(t^2). Every point has the two parameters t and -t
 // (one on the segment, one on the extension), so the Bezout matrix has nullity 2 at every point of
-// the curve and the resultant method cannot answer: the engine must say `failed`, never guess.
+// the curve: the engine must take both from its two-dimensional null space and answer the one on
+// the segment.
 #include "bezinv/curve.hpp"
 
 namespace bezinv::datasets {
