@@ -443,10 +443,13 @@ void decide(const InversionPlan& plan, double u0, double v0, const Candidate& ma
   const bool look_for_second = have_svd && n >= 3 && r.sigma_next <= kSecondNullDirectionRatio;
   const PointPolynomials pq = point_polynomials(plan, u0, v0);
   const bool drop = n >= 2 && detail::degree_drops(plan, u0, v0);
-  const bool settled = count > 0 && candidates[0].on_segment && !look_for_second && !drop;
+  // B vanishes (a straight line through the point): its singular values are rounding, and say
+  // nothing of how many parameters there are.
+  const bool vanishes = n >= 2 && bezout_vanishes(plan, u0, v0, sigma[0]);
+  const bool settled = count > 0 && candidates[0].on_segment && !look_for_second && !drop && !vanishes;
   if (!settled) {
     if (drop) add(sylvester_parameter(pq), Path::sylvester);
-    if (n >= 2 && bezout_vanishes(plan, u0, v0, sigma[0])) {
+    if (vanishes) {
       // B vanishes: p and q are proportional, the curve is a straight line through the point
       // (traced at degree n), and each real root of p (or q) is a parameter.
       std::array<double, kMaxDegree> t;
