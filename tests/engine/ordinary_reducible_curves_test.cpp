@@ -239,8 +239,9 @@ struct LineTally {
 };
 
 // On a monotone line, ok at t_true (and beside it off_curve). On a line that turns back, a point
-// may be met at two or three parameters: ok or double_point, and every parameter returned must
-// reach the point (exactly evaluated). Never failed.
+// may be met at two or three parameters: double_point where the segment passes it more than once
+// (counted by sampling), ok where once, and every parameter returned must reach the point
+// (exactly evaluated). Never failed.
 LineTally probe_line(Findings& findings, Findings& beside, const std::string& name, const Curve& curve, bool monotone,
                      std::mt19937_64& rng) {
   LineTally tally;
@@ -263,7 +264,10 @@ LineTally probe_line(Findings& findings, Findings& beside, const std::string& na
     const double rb = test_support::residual_bound(exact, k.point);
     findings.check(r.t >= 0 && r.t <= 1 && exact.distance(r.t, k.point) <= rb, what);
     findings.check(r.residual <= rb, what);
-    if (r.status == Status::ok && passes(exact, k.point) > 1) ++tally.ok_passed_twice;
+    if (r.status == Status::ok && passes(exact, k.point) > 1) {
+      ++tally.ok_passed_twice;
+      findings.check(false, [&] { return what() + " (ok, but the segment passes the point more than once)"; });
+    }
     if (r.status == Status::double_point) {
       ++tally.double_points;
       findings.check(r.t2 > r.t && r.t2 <= 1 && exact.distance(r.t2, k.point) <= rb, [&] {
