@@ -13,10 +13,11 @@ namespace bezinv {
 enum class Status : std::uint8_t {
   ok,               // on the segment within the tolerance (ends included)
   outside_segment,  // on the curve's extension: t outside [0,1], within the tolerance
-  double_point,     // on the segment at two parameters: t < t2 (a self-intersection)
+  double_point,     // on the segment at two parameters of separate branches: t < t2 (a self-intersection)
   off_curve,        // farther than the tolerance: t is the parameter of the nearest point of the segment
   invalid_input,    // non-finite coordinate, unknown curve, index past the end (set by the I/O layer)
-  failed,           // the curve or point defeats the method (reason says why); never a silent wrong t
+  failed,           // no parameter can be given (a curve whose points all coincide, or no finite
+                    // parameter found; reason says why)
 };
 const char* to_string(Status status);
 
@@ -24,7 +25,8 @@ const char* to_string(Status status);
 enum class Path : std::uint8_t {
   none,
   bezout,       // null vector of the Bezout matrix by its SVD (paper Sect. 3)
-  bezout_pair,  // two-dimensional null space of the Bezout matrix (double point / near degree drop)
+  bezout_pair,  // k >= 2-dimensional null space of the Bezout matrix (double point, several parameters,
+                // near degree drop), or the roots of p where B vanishes (a straight line)
   sylvester,    // Sylvester matrix at the true degrees of p and q (paper Sect. 4)
   nearest,      // nearest-point search on the segment (point off the curve)
   bezout_lu,    // null vector of the Bezout matrix by LU and inverse iteration (the fast path; sigma_min
