@@ -329,6 +329,12 @@ struct QueueScope {
 // for 6-9 sweeps (measured with bench/kernels_bench.cpp on AVX-512: batched Jacobi 101k vs Eigen
 // 66k matrices/s at n = 15, 46k vs 37k at n = 20, 21k vs 31k at n = 24; AVX2 falls behind at 20).
 constexpr int kLaneBatchedMaxDegree = 16;
+// The kernel is compiled for exactly these sizes (one instantiation per size and instruction set).
+static_assert(kLaneBatchedMaxDegree == kernels::kSymmetricSvdMaxSize,
+              "kernels::kSymmetricSvdMaxSize must be the largest n the engine gives the lane-batched SVD");
+// The other kernels get every degree (the SVD path's read-out and B) or every fast-path degree.
+static_assert(kMaxDegree == kernels::kMaxBatchSize && kFastPathMaxDegree <= kernels::kMaxBatchSize,
+              "kernels::kMaxBatchSize must be the largest degree the engine gives the kernels");
 
 void batch_symmetric_svd(int n, std::size_t count, std::size_t stride, const double* B, double* sigma, double* V) {
   if (n <= kLaneBatchedMaxDegree) {

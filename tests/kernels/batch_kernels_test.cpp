@@ -8,7 +8,9 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bezinv/kernels/batch.hpp"
@@ -62,10 +64,12 @@ Constructed with_nullity(int n, int nullity, std::mt19937_64& rng) {
 struct Batch {
   int n;
   std::size_t count, stride;
+  std::vector<Dense> matrices;
   std::vector<double> B, sigma, V, z, defect, estimate, second;
 
   Batch(const std::vector<Dense>& matrices, std::mt19937_64& rng)
-      : n(static_cast<int>(matrices.front().rows())), count(matrices.size()), stride(batch_stride(count)) {
+      : n(static_cast<int>(matrices.front().rows())), count(matrices.size()), stride(batch_stride(count)),
+        matrices(matrices) {
     const std::size_t nn = static_cast<std::size_t>(n) * n;
     B.assign(nn * stride, 0.0);
     std::uniform_real_distribution<double> u(-3.0, 3.0);
@@ -79,8 +83,20 @@ struct Batch {
     estimate.assign(2 * stride, kNaN);
     second.assign(n * stride, kNaN);
   }
+  // Above kSymmetricSvdMaxSize, where the kernel is not compiled (the engine uses Eigen there),
+  // sigma and V come from Eigen::JacobiSVD: the null-vector checks still have their reference.
   void run(const Implementation& impl) {
-    impl.symmetric_svd(n, count, stride, B.data(), sigma.data(), V.data());
+    if (n <= kSymmetricSvdMaxSize) {
+      impl.symmetric_svd(n, count, stride, B.data(), sigma.data(), V.data());
+    } else {
+      for (std::size_t l = 0; l < count; ++l) {
+        const Eigen::JacobiSVD<Dense> svd(matrices[l], Eigen::ComputeFullV);
+        for (int k = 0; k < n; ++k) {
+          sigma[k * stride + l] = svd.singularValues()(k);
+          for (int r = 0; r < n; ++r) V[(k * n + r) * stride + l] = svd.matrixV()(r, k);
+        }
+      }
+    }
     impl.null_vector(n, count, stride, B.data(), z.data(), defect.data(), estimate.data(), second.data());
   }
   double s(std::size_t l, int k) const { return sigma[k * stride + l]; }
@@ -133,6 +149,28 @@ TEST(BatchImplementations, ScalarFirstAndAvx512OnThisCpu) {
   }
 }
 
+// Every instruction set this CPU runs is available, where this build compiled it; the tests that
+// compare implementations then compare all of them. A tree built with BEZINV_KERNEL_TARGETS=native
+// (the sanitizer tree) has scalar and the best only: the others are reported skipped here.
+TEST(BatchImplementations, EveryInstructionSetOfThisCpu) {
+  const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                      __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw");
+  const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  EXPECT_TRUE(detail::implementation_compiled("scalar"));
+  EXPECT_NE(detail::implementation_named("scalar"), nullptr);
+  std::string missing;
+  for (const auto& [name, runs] : {std::pair{"avx2", avx2}, std::pair{"avx512", avx512}}) {
+    if (!runs) continue;
+    if (detail::implementation_compiled(name))
+      EXPECT_NE(detail::implementation_named(name), nullptr) << name;
+    else
+      missing += std::string(missing.empty() ? "" : ", ") + name;
+  }
+  if (!missing.empty())
+    GTEST_SKIP() << "this build did not compile the kernels for " << missing
+                 << " (BEZINV_KERNEL_TARGETS=native); the tests that compare implementations compare the others";
+}
+
 TEST(BatchImplementations, SelectionByName) {
   for (const Implementation* impl : available_implementations()) {
     ASSERT_EQ(detail::implementation_named(impl->name), impl);
@@ -159,7 +197,8 @@ TEST(BatchImplementations, SelectionByName) {
 TEST(BatchSymmetricSvd, MatchesEigenJacobiSvdAndEachOther) {
   std::mt19937_64 rng(20240611);
   double worst_sigma = 0, worst_vector = 0, worst_between = 0;
-  for (int n = 1; n <= kMaxBatchSize; ++n) {
+  // Every size it is compiled for (n = 1..16: around both vector widths, 4 and 8 doubles).
+  for (int n = 1; n <= kSymmetricSvdMaxSize; ++n) {
     for (std::size_t count : kCounts) {
       std::vector<Dense> matrices;
       for (std::size_t l = 0; l < count; ++l) matrices.push_back(random_symmetric(n, rng));
@@ -200,6 +239,27 @@ TEST(BatchSymmetricSvd, MatchesEigenJacobiSvdAndEachOther) {
   RecordProperty("worst_sigma_vs_eigen_rel", sci(worst_sigma));
   RecordProperty("worst_vector_1_minus_cos", sci(worst_vector));
   RecordProperty("worst_sigma_between_implementations", sci(worst_between));
+}
+
+// A size a kernel was not compiled for is an error, not a silent no-op (which would leave the
+// outputs as they were).
+TEST(BatchImplementations, SizesAboveTheCompiledOnesThrow) {
+  constexpr std::size_t count = 3, stride = batch_stride(count);
+  const int n = kSymmetricSvdMaxSize + 1;
+  std::vector<double> B(static_cast<std::size_t>(kMaxBatchSize + 1) * (kMaxBatchSize + 1) * stride, 1.0);
+  std::vector<double> sigma((kMaxBatchSize + 1) * stride), V(B.size()), z(sigma.size()), defect(stride),
+      estimate(2 * stride), t(stride);
+  for (const Implementation* impl : available_implementations()) {
+    SCOPED_TRACE(impl->name);
+    EXPECT_THROW(impl->symmetric_svd(n, count, stride, B.data(), sigma.data(), V.data()), std::out_of_range);
+    EXPECT_THROW(impl->null_vector(kMaxBatchSize + 1, count, stride, B.data(), z.data(), defect.data(),
+                                   estimate.data(), nullptr),
+                 std::out_of_range);
+    EXPECT_THROW(impl->null_vector_seed(kMaxBatchSize + 1, count, stride, B.data(), z.data(), defect.data(),
+                                        estimate.data()),
+                 std::out_of_range);
+    EXPECT_THROW(impl->bernstein_parameter(kMaxBatchSize + 1, count, stride, z.data(), t.data()), std::out_of_range);
+  }
 }
 
 // How far above the true sigma_{n-1} the fast path's estimate may lie on these matrices (singular

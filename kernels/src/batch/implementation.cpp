@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 
 #include "batch/kernels.hpp"
@@ -13,6 +14,16 @@
 #include "bezinv/kernels/detail/batch_selection.hpp"
 
 namespace bezinv::kernels {
+
+namespace batch {
+
+void size_out_of_range(const char* kernel, int n, int max_size) {
+  throw std::out_of_range(std::string("bezinv kernels: ") + kernel + " is compiled for n = 1.." +
+                          std::to_string(max_size) + ", called with n = " + std::to_string(n));
+}
+
+}  // namespace batch
+
 namespace {
 
 struct Candidate {
@@ -61,6 +72,14 @@ std::span<const Implementation* const> available_implementations() {
 }
 
 namespace detail {
+
+bool implementation_compiled(std::string_view name) {
+  for (const Candidate& candidate : kCandidates)
+    if (candidate.name == name)
+      return batch::symmetric_svd_kernel(candidate.target) != nullptr &&
+             batch::null_vector_kernel(candidate.target) != nullptr;
+  return false;
+}
 
 const Implementation* implementation_named(std::string_view name) {
   for (const Implementation* implementation : available_implementations())

@@ -27,7 +27,7 @@ template <class Source>
 void seed(int n, std::size_t count, std::size_t stride, const Source& source, double* z, double* defect,
           double* residual) {
   if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, source, z, defect, residual);
-  dispatch_size(n, [&](auto size) {
+  dispatch_size<kMaxBatchSize>("null_vector_seed", n, [&](auto size) {
     null_vector_fixed<decltype(size)::value, false>(count, stride, source, z, defect, residual, nullptr);
   });
 }

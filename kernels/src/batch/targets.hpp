@@ -9,6 +9,15 @@
 #ifndef HWY_COMPILE_ALL_ATTAINABLE
 #define HWY_COMPILE_ALL_ATTAINABLE
 #endif
+// BEZINV_KERNEL_ONLY_TARGET (CMake: BEZINV_KERNEL_TARGETS=native, the sanitizer tree of
+// scripts/test.sh): the portable baseline and this Highway target bit alone (0: the baseline
+// alone), so a tree that is only tested on the machine that builds it compiles each kernel twice
+// instead of once per instruction set.
 #ifndef HWY_DISABLED_TARGETS
+#ifdef BEZINV_KERNEL_ONLY_TARGET
+#define HWY_DISABLED_TARGETS \
+  (HWY_SSSE3 | HWY_SSE4 | ((HWY_AVX2 | HWY_AVX3 | HWY_AVX3_DL) & ~(BEZINV_KERNEL_ONLY_TARGET)))
+#else
 #define HWY_DISABLED_TARGETS (HWY_SSSE3 | HWY_SSE4)
+#endif
 #endif

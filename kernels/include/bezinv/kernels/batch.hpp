@@ -16,6 +16,11 @@
 namespace bezinv::kernels {
 
 inline constexpr int kMaxBatchSize = 32;    // largest n
+// Largest n of symmetric_svd: each size is compiled once per instruction set, so only those the
+// engine calls (above it, Eigen one matrix at a time is faster; engine/src/invert.cpp,
+// kLaneBatchedMaxDegree, asserts they agree). The other kernels take n up to kMaxBatchSize.
+// A kernel called with an n it was not compiled for throws std::out_of_range.
+inline constexpr int kSymmetricSvdMaxSize = 16;
 inline constexpr int kBatchAlignment = 8;   // lanes per AVX-512 register of doubles; strides are multiples
 
 // A plane rational curve (x_num / x_den, y_num / y_den) of degree 1..kMaxBatchSize: four
@@ -43,6 +48,7 @@ struct Implementation {
 
   // Singular value decomposition of every matrix of the batch (for symmetric B: its Jacobi
   // eigendecomposition; sigma = |lambda|, vectors = eigenvectors, both sorted by sigma descending).
+  // n <= kSymmetricSvdMaxSize.
   void (*symmetric_svd)(int n, std::size_t count, std::size_t stride, const double* B, double* sigma,
                         double* V);
 

@@ -10,6 +10,10 @@ namespace bezinv::kernels::detail {
 // The implementation called `name` if this build has it and this CPU runs it, else nullptr.
 const Implementation* implementation_named(std::string_view name);
 
+// Whether this build compiled the kernels of the implementation called `name`, whether or not this
+// CPU runs them (a tree built with BEZINV_KERNEL_TARGETS=native has scalar and the CPU's best only).
+bool implementation_compiled(std::string_view name);
+
 // The best available implementation.
 const Implementation& best_implementation();
 
