@@ -772,8 +772,8 @@ void answer_far_point(const InversionPlan& plan, const Point& point, PointResult
   r.residual = 2 * std::hypot(0.5 * p[0] - 0.5 * point.x, 0.5 * p[1] - 0.5 * point.y);
 }
 
-// A lane whose Bezout matrix overflowed (poison[l] not 0: an entry is not finite) is answered
-// failed, and leaves the pipeline.
+// A lane whose Bezout matrix overflowed (poison[l] not 0: an entry is not finite) is a point too
+// far to form B for: answered off_curve by answer_far_point, it leaves the pipeline.
 void mark_overflowing_b(const InversionPlan& plan, const Point* points, const double* poison, std::size_t count,
                         BatchWorkspace& w, PointResult* results) {
   for (std::size_t l = 0; l < count; ++l)

@@ -10,6 +10,7 @@
 #include <limits>
 #include <mutex>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -259,7 +260,7 @@ void make_plans(std::span<const Curve> curves, std::span<const std::size_t> indi
 std::vector<InversionPlan> make_plans(std::span<const Curve> curves, int threads) {
   std::vector<InversionPlan> plans(curves.size());
   std::vector<std::size_t> all(curves.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  std::iota(all.begin(), all.end(), std::size_t{0});
   make_plans(curves, all, plans, threads);
   return plans;
 }
