@@ -7,8 +7,8 @@
 #   bash scripts/same_answers.sh [REV]              # REV: a commit, branch or tag; default HEAD
 #   bash scripts/same_answers.sh --base-binary PATH # compare against an already built bezinv
 #
-# It builds REV's bezinv (Release, every kernel target) in build-answers/REV-<hash>/ (kept, so a
-# second run is quick) and this tree's in build/. Exit 0 when every output is identical; otherwise
+# It builds REV's bezinv (Release, every kernel target) in build-answers/<hash>/ (kept, so a
+# second run is quick) and this tree's in build-answers/this/. Exit 0 when every output is identical; otherwise
 # it lists the runs that differ and the first differing rows.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -41,9 +41,9 @@ if [ -z "$base_binary" ]; then
   fi
   base_binary="$base_dir/build/bezinv"
 fi
-echo "same_answers: building this tree in build/" >&2
-configure "$root" "$root/build"
-this_binary="$root/build/bezinv"
+echo "same_answers: building this tree in build-answers/this" >&2
+configure "$root" "$root/build-answers/this"
+this_binary="$root/build-answers/this/bezinv"
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT

@@ -52,6 +52,19 @@ inline constexpr double kFastPathGapRatio = 2 * kSecondNullDirectionRatio;
 inline constexpr double kFastPathMinGap = 1e-5;
 inline constexpr double kFastPathMaxDefect = 1e-3;
 inline constexpr int kFastPathMaxDegree = 32;
+// The fast path answers an off-curve lane (docs/fast-path.md, "Off the curve") only where its
+// refinement stopped at a stationary point of the distance: cos(P(t) - P0, P'(t)) at most this.
+// The stationary point the SVD path's search would find is then within 2 cos d |P'| / v^2 of t,
+// ~1e-13 for d = 1e-5 of the curve's size; Newton's last step leaves cos at ~1e-16 / d.
+inline constexpr double kStationaryCosine = 1e-8;
+// ... and not where a root of span{z, second} lies this close to an end of the segment: the SVD's
+// slightly different vectors may put it on the other side, to be walked along the extension there.
+inline constexpr double kRootNearEnd = 1e-6;
+
+// The SVD path's kernel: up to this degree the lane-batched Jacobi kernel (one matrix per SIMD
+// lane), above it Eigen's tridiagonal QR per matrix, which is faster there (docs/kernels.md). The
+// two differ in the last bits, so this number is part of every answer's bits.
+inline constexpr int kLaneBatchedSvdMaxDegree = 16;
 
 // Degree drop (paper Sect. 4): the power-basis leading coefficient of p = X - x0 W (or q) counts as
 // zero when it is at most this times sum_i C(n,i)|p_i|, the bound on its size. Near such points one
@@ -88,6 +101,10 @@ inline constexpr double kComplexRootSlack = 1e-6;
 
 // Two parameters of a double point must differ by more than this to count as distinct branches.
 inline constexpr double kDistinctParameterGap = 1e-7;
+// The fast path's pair check skips a root of span{z, second} this close to the lane's refined t:
+// it is z's own root (z ~ b(t) lies in the span), refining it lands on t again, and it cannot be a
+// parameter distinct from t by more than kDistinctParameterGap (100 times farther).
+inline constexpr double kSameRoot = 1e-2 * kDistinctParameterGap;
 // ... and the curve must leave the tolerance of the point somewhere between them: checked at this
 // many evenly spaced parameters (a loop back to the point is wide in parameter; a slow stretch of
 // the curve, e.g. near a tiny weight, or a cusp within the tolerance stays inside throughout).
@@ -117,5 +134,11 @@ inline constexpr int kNewtonMaxHalvings = 40;
 
 // Nearest-point search on the segment (off-curve points): samples per unit of degree.
 inline constexpr int kNearestSamplesPerDegree = 16;
+
+// A point so far that its normalized coordinates or its Bezout matrix overflow is answered from
+// its direction (engine/src/pipeline/far_point.hpp): the nearest point of the segment to a stand-in
+// on that ray at this distance from the centre (normalized units, curve size ~1), where nothing
+// overflows and the direction to every point of the curve is that of the ray to within 1e-8.
+inline constexpr double kFarStandIn = 1e8;
 
 }  // namespace bezinv

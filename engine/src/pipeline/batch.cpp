@@ -1,0 +1,90 @@
+#include "pipeline/batch.hpp"
+
+#include <array>
+
+#include "pipeline/fast_path.hpp"
+#include "pipeline/form_b.hpp"
+#include "pipeline/pair_check.hpp"
+#include "pipeline/stage_clock.hpp"
+#include "pipeline/svd_path.hpp"
+#include "pipeline/svd_queue.hpp"
+#include "pipeline/workspace.hpp"
+
+namespace bezinv::detail {
+namespace {
+
+// One batch through the stages, but for the lanes left waiting in this thread's queues.
+void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+                        const InvertOptions& options, StageSeconds* stages) {
+  BatchWorkspace& w = batch_workspace();
+  const int n = plan.degree, nn = n * n;
+  const std::size_t stride = kBatchLanes;
+  StageClock clock(stages);
+
+  const bool fast = takes_fast_path(plan, options);
+  const bool formed_b = forms_b_in_seed(plan, options);
+  form_batch(plan, points, results, count, /*form=*/n >= 2 && !formed_b, w);
+  clock.lap(&StageSeconds::form_b);
+
+  if (fast) fast_path(plan, points, results, count, options, w, clock);
+
+  // The SVD path for the lanes still undecided, compacted to the front of the batch (in order, so
+  // moving lane lane_of[k] >= k down to k never overwrites a lane still to be moved).
+  std::size_t m = 0;
+  for (std::size_t l = 0; l < count; ++l) {
+    if (!w.active[l]) continue;
+    if (m != l) {
+      if (!formed_b)
+        for (int i = 0; i < nn; ++i) w.B[i * stride + m] = w.B[i * stride + l];
+      w.u[m] = w.u[l];
+      w.v[m] = w.v[l];
+    }
+    w.lane_of[m++] = static_cast<std::uint8_t>(l);
+  }
+  if (formed_b && m > 0) form_compacted_b(plan, w.u.data(), w.v.data(), m, w.B.data());
+
+  if (m == 0) {
+    clock.lap(&StageSeconds::decide);  // the routing above is the decide stage's
+    return;
+  }
+  SvdQueue& queue = svd_queue();
+  if (m >= kSvdGroupLanes || queue.size + m > kBatchLanes) {  // enough for a group: here and now
+    std::array<PointResult*, kBatchLanes> target;
+    for (std::size_t k = 0; k < m; ++k) target[k] = &results[w.lane_of[k]];
+    svd_path(plan, w.B.data(), w.u.data(), w.v.data(), target.data(), m, options, w, clock);
+    return;
+  }
+  for (std::size_t k = 0; k < m; ++k) queue.push(nn, w.B.data(), k, w.u[k], w.v[k], &results[w.lane_of[k]]);
+  clock.lap(&StageSeconds::decide);
+  if (queue.size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);
+}
+
+}  // namespace
+
+// One batch, with this thread's pair-check queue around it: flushed first if the batch's lanes
+// might not fit in it, and after once enough roots wait to fill a SIMD group (both outside
+// invert_batch_lanes, whose workspace the SVD path also uses).
+void invert_batch(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+                  const InvertOptions& options, StageSeconds* stages) {
+  PairCheckQueue& pairs = pair_check_queue();
+  if (pairs.lanes + count > kPairCheckLanes) flush_pair_check_queue(plan, options, stages);
+  invert_batch_lanes(plan, points, results, count, options, stages);
+  if (pairs.near + pairs.far >= kPairCheckFlushRoots) {
+    flush_pair_check_queue(plan, options, stages);
+    if (svd_queue().size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);
+  }
+}
+
+
+void flush_queues(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages) {
+  flush_pair_check_queue(plan, options, stages);
+  flush_svd_queue(plan, options, stages);
+}
+
+QueueScope::~QueueScope() {
+  svd_queue().size = 0;
+  PairCheckQueue& pairs = pair_check_queue();
+  pairs.lanes = pairs.near = pairs.far = 0;
+}
+
+}  // namespace bezinv::detail

@@ -1,0 +1,37 @@
+#pragma once
+// The pipeline's driver: one batch of points of one curve through its stages (docs/README.md):
+//   1. form B     normalize and admit the points, form B (form_b.hpp)
+//   2-4. fast path  null vector by inverse iteration, read-out, refinement, and the answers it
+//                 may give (fast_path.hpp)
+//   2-5. SVD path  for the lanes still undecided, here or through the per-thread queue
+//                 (svd_path.hpp, svd_queue.hpp)
+// and the rare paths from decide.hpp (pair, Sylvester, nearest). invert_point is a batch of one,
+// so there is one code path.
+#include <cstddef>
+
+#include "bezinv/invert.hpp"
+#include "bezinv/plan.hpp"
+
+namespace bezinv::detail {
+
+// One batch (count <= kBatchLanes), with this thread's queues around it: some lanes may be left
+// waiting in them (flush_queues answers them).
+void invert_batch(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+                  const InvertOptions& options, StageSeconds* stages);
+
+// Answers every lane waiting in this thread's queues: the pair check first (it may hand lanes to
+// the SVD path), then the SVD queue. Called at the end of each range of batches, so a queue never
+// outlives the plan it was filled for.
+void flush_queues(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages);
+
+// Empties this thread's queues when it goes out of scope: after the last flush they are empty
+// anyway; if an exception (bad_alloc) cut the work short, the waiting lanes point into the
+// caller's results and must not be run by a later call.
+struct QueueScope {
+  QueueScope() = default;
+  QueueScope(const QueueScope&) = delete;
+  QueueScope& operator=(const QueueScope&) = delete;
+  ~QueueScope();
+};
+
+}  // namespace bezinv::detail

@@ -1,0 +1,47 @@
+#pragma once
+// Where a row's status is decided. Every status and path a PointResult gets is set by one of the
+// functions below, in the order a point meets them:
+//   admit             stage 1: invalid_input (a non-finite coordinate), failed (an unusable
+//                     curve), or off_curve for a point too far to form B for (far_point.hpp)
+//   answer_fast       the fast path's ok (certified on the segment) and off_curve
+//   decide_with_gap   the fast path with the kernel's sigma_{n-1} estimate: answered here, after
+//                     the second-parameter check (pair_check.hpp), or left to the SVD path
+//   decide            the SVD path: every status, from every candidate parameter
+// The rules are in docs/accuracy-model.md (statuses) and docs/fast-path.md (when the fast path
+// may answer: only where the SVD path would give the same answer).
+#include <cstddef>
+
+#include "bezinv/invert.hpp"
+#include "bezinv/plan.hpp"
+#include "pipeline/candidate.hpp"
+#include "pipeline/workspace.hpp"
+
+namespace bezinv::detail {
+
+// Stage 1 for one point, (u, v) its normalized coordinates: true when the point goes on through
+// the pipeline; otherwise r holds its answer.
+bool admit(const InversionPlan& plan, const Point& point, double u, double v, PointResult& r);
+
+// The fast path's answer: status ok (or off_curve), path bezout_lu, the sigma columns from the
+// kernel's estimates.
+void answer_fast(const InversionPlan& plan, double t, double distance, double sigma_min, double sigma_next,
+                 PointResult& r, Status status = Status::ok);
+
+// Whether the fast path may answer lane l (refined to c, off the curve) off_curve from the curve's
+// geometry: its refinement ended inside (0, 1) at a stationary point of the distance that the
+// isolation certificate proves the nearest point of the segment.
+bool off_curve_nearest(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, const Candidate& c);
+
+// The fast path's decision for lane l, refined to c, with the kernel's gap: answered here (ok, or
+// off_curve), after the second-parameter check, or left to the SVD path (still active). `asked`:
+// the curve's geometry was asked already (the gap pass): on the segment the isolation certificate
+// refused the lane, off it off_curve_nearest held.
+void decide_with_gap(const InversionPlan& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
+                     double tolerance, bool asked, PointResult& result);
+
+// The SVD path's decision for one point: `main` is the refined candidate from the null vector;
+// sigma (n values, decreasing) and V (singular vector k at V[k n + r]) are the point's SVD of B.
+void decide(const InversionPlan& plan, double u0, double v0, const Candidate& main, const double* sigma,
+            const double* V, const InvertOptions& options, PointResult& r);
+
+}  // namespace bezinv::detail

@@ -1,0 +1,134 @@
+#include "pipeline/fast_path.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "bezinv/kernels/batch.hpp"
+#include "degree_drop.hpp"
+#include "isolation.hpp"
+#include "pipeline/candidate.hpp"
+#include "pipeline/decide.hpp"
+#include "pipeline/form_b.hpp"
+#include "refine.hpp"
+
+namespace bezinv::detail {
+namespace {
+
+// Pass 2, the gap pass: the full kernel for the `waiting` lanes w.gap_lane_of[0..waiting), compacted,
+// its results put back in their lanes, then decide_with_gap with the refined point they kept.
+void gap_pass(const InversionPlan& plan, std::size_t waiting, double tolerance, BatchWorkspace& w,
+              PointResult* results, StageClock& clock) {
+  const int n = plan.degree;
+  const std::size_t stride = kBatchLanes;
+  {
+    std::array<double, kBatchLanes> u, v;
+    for (std::size_t k = 0; k < waiting; ++k) u[k] = w.u[w.gap_lane_of[k]], v[k] = w.v[w.gap_lane_of[k]];
+    form_compacted_b(plan, u.data(), v.data(), waiting, w.gap_B.data());
+  }
+  kernels::active_implementation().null_vector(n, waiting, stride, w.gap_B.data(), w.gap_z.data(),
+                                               w.gap_defect.data(), w.gap_estimate.data(), w.gap_second.data());
+  for (std::size_t k = 0; k < waiting; ++k) {
+    const std::size_t l = w.gap_lane_of[k];
+    for (int r = 0; r < n; ++r) {
+      w.z[r * stride + l] = w.gap_z[r * stride + k];
+      w.second[r * stride + l] = w.gap_second[r * stride + k];
+    }
+    w.defect[l] = w.gap_defect[k];
+    w.estimate[l] = w.gap_estimate[k];
+    w.estimate[stride + l] = w.gap_estimate[stride + k];
+  }
+  clock.lap(&StageSeconds::kernel);
+  for (std::size_t k = 0; k < waiting; ++k) {
+    const std::size_t l = w.gap_lane_of[k];
+    if (w.defect[l] <= kFastPathMaxDefect && w.estimate[stride + l] >= kFastPathMinGap)
+      decide_with_gap(plan, w, l, w.main[l], tolerance, true, results[l]);
+  }
+  clock.lap(&StageSeconds::refine);
+}
+
+}  // namespace
+
+void fast_path(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+               const InvertOptions& options, BatchWorkspace& w, StageClock& clock) {
+  const int n = plan.degree;
+  const std::size_t stride = kBatchLanes;
+  const double tolerance = normalized_tolerance(plan, options);
+  const bool formed_b = forms_b_in_seed(plan, options);
+  const kernels::Implementation& kernel = kernels::active_implementation();
+  const bool two_passes = n >= 3;
+  if (formed_b) {
+    std::array<double, kBatchLanes> poison;
+    kernel.bezout_null_vector_seed(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
+                                   bilinear_coefficients(plan), w.u.data(), w.v.data(), w.z.data(), w.defect.data(),
+                                   w.estimate.data(), poison.data());
+    mark_overflowing_b(plan, points, poison.data(), count, w, results);
+  } else if (two_passes) {
+    kernel.null_vector_seed(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data());
+  } else {
+    kernel.null_vector(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),
+                       w.second.data());
+  }
+  clock.lap(&StageSeconds::kernel);
+  kernel.bernstein_parameter(n, count, stride, w.z.data(), w.t_algebraic.data());
+  for (std::size_t l = 0; l < count; ++l)
+    if (!w.active[l] || !(w.defect[l] <= kFastPathMaxDefect) ||
+        (!two_passes && !(w.estimate[stride + l] >= kFastPathMinGap)))
+      w.t_algebraic[l] = PointResult::nan;
+  clock.lap(&StageSeconds::read_out);
+  // Refinement, lane-batched: the kernel runs refine.cpp's safeguarded Newton for every lane whose
+  // t_algebraic is in [0,1] and gives settle()'s numbers bit for bit. It leaves the rest to
+  // settle(), as it does a lane that ends at an end of the segment off the curve (settle() then
+  // also looks along the extension).
+  std::copy_n(w.t_algebraic.begin(), count, w.t_refined.begin());
+  const kernels::RationalCurve curve = detail::kernel_curve(plan);
+  kernel.rational_newton(curve, detail::kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(),
+                         w.distance.data());
+  detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
+  if (two_passes) {
+    // The common case of pass 1, for the whole batch first: a lane refined onto the segment within
+    // the tolerance (the kernel clamps to [0, 1]) that the certificate's first test settles. The
+    // loop below would answer it the same way, at a higher cost per lane.
+    detail::isolated_by_far_boxes(plan, w.t_refined.data(), w.distance.data(), tolerance, count,
+                                  w.certified.data());
+    for (std::size_t l = 0; l < count; ++l)
+      if (w.certified[l] && w.active[l] && !w.drops[l] && std::isfinite(w.t_algebraic[l]) &&
+          w.distance[l] <= tolerance) {
+        w.active[l] = 0;
+        answer_fast(plan, w.t_refined[l], w.distance[l], w.estimate[l], PointResult::nan, results[l]);
+      }
+  }
+  std::size_t waiting = 0;  // lanes of pass 2
+  for (std::size_t l = 0; l < count; ++l) {
+    if (!w.active[l] || w.drops[l]) continue;
+    Candidate& c = w.main[l];
+    const bool refined = std::isfinite(w.t_algebraic[l]);
+    if (refined) {
+      const bool at_end = w.t_refined[l] == 0.0 || w.t_refined[l] == 1.0;
+      if (std::isfinite(w.distance[l]) && !(at_end && !(w.distance[l] <= tolerance))) {
+        c = Candidate{};
+        c.t = w.t_refined[l];
+        c.distance = w.distance[l];
+        c.path = Path::bezout_lu;
+        classify(c, tolerance);
+      } else {
+        c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
+      }
+    }
+    if (!two_passes) {
+      if (refined) decide_with_gap(plan, w, l, c, tolerance, false, results[l]);
+      continue;
+    }
+    if (!refined) continue;  // z did not settle: the SVD path
+    if (c.on_segment && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance)) {
+      w.active[l] = 0;
+      answer_fast(plan, c.t, c.distance, w.estimate[l], PointResult::nan, results[l]);
+    } else if (c.on_segment || off_curve_nearest(plan, w, l, c)) {
+      w.gap_lane_of[waiting++] = static_cast<std::uint8_t>(l);
+    }
+  }
+  clock.lap(&StageSeconds::refine);
+  if (waiting > 0) gap_pass(plan, waiting, tolerance, w, results, clock);
+}
+
+}  // namespace bezinv::detail

@@ -1,0 +1,42 @@
+#pragma once
+// The fast path (docs/fast-path.md): with refinement on and degree >= 2, a null vector of B by
+// inverse iteration instead of an SVD, read out and refined lane-batched; a lane is answered here
+// only where the SVD path could not answer it differently, and every other lane stays active for
+// the SVD path.
+//   degree 2        the full kernel (pivoted LU, the sigma_{n-1} estimate) for every lane;
+//   degree >= 3     pass 1, the seed kernel (L D L^T without pivoting, no gap): a lane refined onto
+//                   the segment that the isolation certificate covers is answered;
+//                   pass 2, the gap pass: the lanes the geometry alone does not settle (on the
+//                   segment but not certified, or off the curve and proved the nearest point)
+//                   go through the full kernel and decide_with_gap.
+#include <cstddef>
+
+#include "bezinv/invert.hpp"
+#include "bezinv/plan.hpp"
+#include "pipeline/stage_clock.hpp"
+#include "pipeline/workspace.hpp"
+
+namespace bezinv::detail {
+
+// From this degree the seed kernel forms each lane's B in registers from the plan instead of
+// reading the batch's (bezout_null_vector_seed, the same bits as bezout_matrix): above it a
+// batch's B no longer fits in L1. Speed only (docs/fast-path.md, "Forming B in the seed").
+inline constexpr int kFormedBMinDegree = 8;
+
+// Whether a batch of this plan takes the fast path. Not on a straight line: B vanishes at its
+// points, and the kernel's estimates, relative to ||B||, would read rounding as evidence.
+inline bool takes_fast_path(const InversionPlan& plan, const InvertOptions& options) {
+  return options.fast_path && options.refine && plan.degree >= 2 && plan.degree <= kFastPathMaxDegree &&
+         !plan.straight_line;
+}
+
+// Whether the fast path forms B itself (the batch's w.B is then not formed in stage 1).
+inline bool forms_b_in_seed(const InversionPlan& plan, const InvertOptions& options) {
+  return takes_fast_path(plan, options) && plan.degree >= kFormedBMinDegree;
+}
+
+// Stages 2-4 (and the decisions they allow) for the batch's active lanes.
+void fast_path(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+               const InvertOptions& options, BatchWorkspace& w, StageClock& clock);
+
+}  // namespace bezinv::detail

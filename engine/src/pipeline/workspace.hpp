@@ -1,0 +1,54 @@
+#pragma once
+// The batch a thread works on: kBatchLanes points of one curve, stored lane by lane (structure of
+// arrays), so that each stage is one loop over the batch (docs/README.md, "How a point flows").
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "bezinv/tolerances.hpp"
+#include "pipeline/candidate.hpp"
+
+namespace bezinv::detail {
+
+// Points per batch: enough to fill the kernels' SIMD groups, few enough that a batch's B matrices
+// stay in cache up to moderate degrees. Speed only: no answer depends on it.
+inline constexpr std::size_t kBatchLanes = 64;
+
+// Per-thread storage for one batch, sized for the largest degree once: nothing is allocated per
+// point or per batch. Matrices and vectors are lane-major: entry i of lane l at [i * kBatchLanes + l].
+struct BatchWorkspace {
+  std::array<double, kBatchLanes> u, v;          // the points, normalized (InversionPlan::normalize)
+  std::array<std::uint8_t, kBatchLanes> active;  // lane still undecided
+  std::vector<double> B = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
+  // The SVD path: singular values and vectors, and the algebraic t read from the last vector.
+  std::vector<double> sigma = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
+  std::vector<double> V = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
+  std::array<double, kBatchLanes> t_algebraic;
+  // The fast path's lane-batched refinement: t and |P(t) - P0| (NaN where it left the lane to settle()).
+  std::array<double, kBatchLanes> t_refined, distance;
+  std::array<std::uint8_t, kBatchLanes> drops;      // a degree drop at the lane's point
+  std::array<std::uint8_t, kBatchLanes> certified;  // pass 1: settled by the isolation certificate's first test
+  std::array<Candidate, kBatchLanes> main;
+  // Fast path (LU null vector): z, the kernel's second vector, defect and the two sigma estimates
+  // (sigma_min at [l], sigma_next at [kBatchLanes + l]).
+  std::vector<double> z = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
+  std::vector<double> second = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
+  std::array<double, kBatchLanes> defect;
+  std::array<double, 2 * kBatchLanes> estimate;
+  // The gap pass (fast_path.cpp): its lanes compacted, gap lane k being batch lane gap_lane_of[k],
+  // and the full kernel's outputs for them before they go back to their lanes.
+  std::vector<double> gap_B = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
+  std::vector<double> gap_z = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
+  std::vector<double> gap_second = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
+  std::array<double, kBatchLanes> gap_defect;
+  std::array<double, 2 * kBatchLanes> gap_estimate;
+  std::array<std::uint8_t, kBatchLanes> gap_lane_of;
+  // The lanes left for the SVD path, compacted to the front: compact lane k is batch lane lane_of[k].
+  std::array<std::uint8_t, kBatchLanes> lane_of;
+};
+
+// This thread's workspace.
+BatchWorkspace& batch_workspace();
+
+}  // namespace bezinv::detail
