@@ -60,7 +60,7 @@ constexpr int kPointsPerCurve = 1024;
 // on these curves (bezinv's refined t is within ~1e-15), far below what a wrong extremum gives.
 constexpr double kAgreement = 1e-7;
 
-// SISL's geometric resolution for s1953 (the brief's ~1e-9; the curves are of unit size).
+// SISL's geometric resolution for s1953: far below kAgreement (the curves are of unit size).
 constexpr double kSislGeometricResolution = 1e-9;
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
@@ -384,7 +384,7 @@ void BM_SISL_ClosestPoint(benchmark::State& state) {
 #endif  // BEZINV_HAVE_SISL
 
 // Registered degree by degree (OCCT/n, SISL/n, the paper's way, Eigen, bezinv on 1 and 2 threads,
-// then the next n), so the figures of a degree are measured minutes apart at most on a shared machine.
+// then the next n), so a degree's figures are measured close together and its ratios compare.
 const bool registered = [] {
   for (int n = 1; n <= 24; ++n) {
 #ifdef BEZINV_HAVE_OCCT

@@ -1,4 +1,4 @@
-// The `bezinv` command: argument parsing, then the data flow of README "How it works":
+// The `bezinv` command: argument parsing, then the data flow of docs/README.md:
 // CURVES.json -> curves -> plans, then POINTS (.csv/.npy) -> invert -> OUT (.csv/.npy) a chunk at a time.
 #include <array>
 #include <chrono>
@@ -59,7 +59,7 @@ struct InvertArguments {
 };
 
 // One self-overwriting line on stderr: points done, how far through the input, rate. Only when
-// stderr is a terminal (never in CI logs or pipes), only once the job has run a second, at most
+// stderr is a terminal (never in logs or pipes), only once the job has run a second, at most
 // ten times a second; wiped again at the end so what follows starts on a clean line.
 class ProgressLine {
  public:

@@ -126,7 +126,7 @@ std::string npy(std::string_view dict, std::string_view data = std::string(16, '
 
 TEST_F(CliHostileInput, NpyHeadersThatClaimTooMuch) {
   const std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2), }";
-  // 208 bytes whose header length says 4 GiB (this once allocated 4.2 GB before reading).
+  // 208 bytes whose header length says 4 GiB (a reader that trusted it would allocate that first).
   for (const int major : {2, 3}) {
     const std::string bytes = npy(dict + std::string(208 - 12 - dict.size(), ' '), major, 0xFFFFFFFF, "");
     ASSERT_EQ(bytes.size(), 208u);

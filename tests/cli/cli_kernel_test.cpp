@@ -50,8 +50,8 @@ TEST(CliKernel, ProfileRunsOnTheForcedKernel) {
       EXPECT_LE(report.at("max_abs_dt_ok").get<double>(), 1e-10);
       // On-curve points of random curves: the fast path answers (nearly) all of them.
       EXPECT_GE(report.at("fast_path").get<int>(), 1800);
-      // ... and the isolation certificate settles most of those without the gap (96-100% of
-      // on-curve lanes on random curves of degree 3-20, isolation_test.cpp measures it).
+      // ... and the isolation certificate settles most of those without the gap
+      // (docs/fast-path.md#the-isolation-certificate).
       EXPECT_LE(report.at("certified").get<int>(), report.at("fast_path").get<int>());
       EXPECT_GE(report.at("certified").get<int>(), 1600);
     }

@@ -1,8 +1,9 @@
-// End to end: the real `bezinv` command on ordinary curves it used to refuse or get wrong (a graph
-// of a function as bezier and as rational, an arch 1e12 from the origin, a line traced at degree 3,
-// a curve with a common factor), and on finite points far beyond the curves. The points are made
-// here from known parameters by exact evaluation (tests/support/known_parameter.hpp), written with
-// 17 significant digits, which read back as the same doubles.
+// End to end: the real `bezinv` command on ordinary curves that a plain Bezout inversion refuses or
+// gets wrong (a graph of a function as bezier and as rational, an arch 1e12 from the origin, a line
+// traced at degree 3, a curve with a common factor), and on finite points far beyond the curves.
+// The points are made here from known parameters by exact evaluation
+// (tests/support/known_parameter.hpp), written with 17 significant digits, which read back as the
+// same doubles.
 #include <gtest/gtest.h>
 
 #include <array>

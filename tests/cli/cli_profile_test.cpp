@@ -1,6 +1,6 @@
 // `bezinv profile` end to end: it generates points at known parameters on random curves, so on
 // exact (noise-free) points every row must come back ok with t at rounding level of t_true; the
-// JSON object must carry the fields the issue names.
+// JSON object must carry the fields the README documents.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
