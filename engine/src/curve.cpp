@@ -7,7 +7,7 @@
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/tolerances.hpp"
-#include "io_quote.hpp"
+#include "io/quote.hpp"
 
 namespace bezinv {
 

@@ -1,5 +1,5 @@
-// OutputTarget (io_output_target.hpp) and the signal handler that removes its temporary file.
-#include "io_output_target.hpp"
+// OutputTarget (io/output_target.hpp) and the signal handler that removes its temporary file.
+#include "io/output_target.hpp"
 
 #include <atomic>
 #include <cerrno>

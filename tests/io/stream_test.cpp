@@ -1,4 +1,4 @@
-// invert_stream from the curves (engine/src/io_stream.cpp): plans are built for the curves the
+// invert_stream from the curves (engine/io/stream.cpp): plans are built for the curves the
 // points name, and the rows are those of the plans built up front.
 #include <gtest/gtest.h>
 

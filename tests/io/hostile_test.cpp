@@ -20,8 +20,8 @@
 
 #include "bezinv/curve.hpp"
 #include "bezinv/io.hpp"
-#include "io_quote.hpp"
-#include "io_whole_file.hpp"
+#include "io/quote.hpp"
+#include "io/whole_file.hpp"
 #include "support/scratch_directory.hpp"
 
 namespace bezinv {

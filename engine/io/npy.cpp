@@ -1,7 +1,7 @@
-// The .npy container: reading and writing the preamble (format in io_npy.hpp). Only the subset
+// The .npy container: reading and writing the preamble (format in io/npy.hpp). Only the subset
 // numpy's own np.save writes is parsed: a dict of string keys whose values are strings, True/False,
 // tuples of integers, or a list (a structured dtype, kept as raw text for the error message).
-#include "io_npy.hpp"
+#include "io/npy.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -11,7 +11,7 @@
 #include <string>
 
 #include "bezinv/io.hpp"
-#include "io_quote.hpp"
+#include "io/quote.hpp"
 
 namespace bezinv::detail {
 namespace {

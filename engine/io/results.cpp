@@ -1,5 +1,5 @@
 // PointResult chunks -> OUT.csv or OUT.npy (formats in bezinv/io.hpp), through an OutputTarget
-// that publishes them only at commit (io_output_target.hpp).
+// that publishes them only at commit (io/output_target.hpp).
 #include <algorithm>
 #include <bit>
 #include <charconv>
@@ -14,8 +14,8 @@
 #include <tbb/task_arena.h>
 
 #include "bezinv/io.hpp"
-#include "io_npy.hpp"
-#include "io_output_target.hpp"
+#include "io/npy.hpp"
+#include "io/output_target.hpp"
 
 namespace bezinv {
 namespace {

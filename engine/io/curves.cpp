@@ -19,8 +19,8 @@
 #include <nlohmann/json.hpp>
 
 #include "bezinv/io.hpp"
-#include "io_quote.hpp"
-#include "io_whole_file.hpp"
+#include "io/quote.hpp"
+#include "io/whole_file.hpp"
 
 namespace bezinv {
 namespace {

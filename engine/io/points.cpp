@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "bezinv/io.hpp"
-#include "io_npy.hpp"
-#include "io_point_readers.hpp"
-#include "io_quote.hpp"
+#include "io/npy.hpp"
+#include "io/point_readers.hpp"
+#include "io/quote.hpp"
 
 namespace bezinv {
 namespace {
