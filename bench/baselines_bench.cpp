@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "bezinv/datasets/curve_sampling.hpp"
+#include "plan_data.hpp"
 #include "bezinv/datasets/on_curve_points.hpp"
 #include "bezinv/datasets/random_curve.hpp"
 #include "bezinv/invert.hpp"
@@ -211,9 +212,9 @@ void BM_Paper_recurrence_JacobiSVD(benchmark::State& state) {
 using EigenMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxDegree, kMaxDegree>;
 double eigen_parameter(const InversionPlan& plan, Point point, EigenMatrix& B,
                        Eigen::SelfAdjointEigenSolver<EigenMatrix>& solver) {
-  const int n = plan.degree;
-  const auto uv = plan.normalize(point.x, point.y);
-  bezout_at(plan, uv[0], uv[1], std::span<double>(B.data(), static_cast<std::size_t>(n) * n));
+  const int n = plan.degree();
+  const auto uv = bezinv::detail::plan_data(plan).normalize(point.x, point.y);
+  bezinv::detail::bezout_at(bezinv::detail::plan_data(plan), uv[0], uv[1], std::span<double>(B.data(), static_cast<std::size_t>(n) * n));
   solver.compute(B, Eigen::ComputeEigenvectors);
   // The eigenvalue of least magnitude and its vector.
   int k = 0;

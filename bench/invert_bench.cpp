@@ -50,7 +50,7 @@ const Workload& workload(int degree, double noise = 0.0) {
         p = datasets::on_curve(w.curves.back(), datasets::uniform(rng, 0.0, 1.0));
         if (noise == 0.0) continue;
         const double angle = datasets::uniform(rng, 0.0, 2 * std::numbers::pi);
-        const double offset = noise * datasets::uniform(rng, 0.0, 1.0) * w.plans.back().diagonal;
+        const double offset = noise * datasets::uniform(rng, 0.0, 1.0) * w.plans.back().diagonal();
         p = {p.x + offset * std::cos(angle), p.y + offset * std::sin(angle)};
       }
       w.points.push_back(std::move(pts));

@@ -61,7 +61,7 @@ Row run_curve(const Curve& curve, std::size_t count, int threads, std::mt19937_6
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
 
   Row row;
-  row.degree = plan.degree;
+  row.degree = plan.degree();
   row.points = count;
   row.points_per_second = elapsed.count() > 0 ? static_cast<double>(count) / elapsed.count() : 0.0;
   std::vector<double> errors(count);
@@ -72,7 +72,7 @@ Row run_curve(const Curve& curve, std::size_t count, int threads, std::mt19937_6
     errors[i] = std::isfinite(r.t) ? std::abs(r.t - t_true[i]) : INFINITY;
     row.max_error = std::max(row.max_error, errors[i]);
     if (std::isfinite(r.residual))
-      row.max_relative_residual = std::max(row.max_relative_residual, r.residual / plan.diagonal);
+      row.max_relative_residual = std::max(row.max_relative_residual, r.residual / plan.diagonal());
   }
   if (count > 0) {
     std::nth_element(errors.begin(), errors.begin() + count / 2, errors.end());

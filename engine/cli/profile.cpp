@@ -19,6 +19,7 @@
 #include "bezinv/datasets/random_curve.hpp"
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/invert.hpp"
+#include "bezinv/profile.hpp"
 #include "bezinv/plan.hpp"
 
 namespace bezinv::cli {
@@ -42,7 +43,7 @@ Workload generate(const ProfileOptions& options) {
     for (std::size_t i = 0; i < count; ++i) {
       t[i] = datasets::uniform(rng, 0.0, 1.0);
       angle[i] = datasets::uniform(rng, 0.0, 2 * std::numbers::pi);
-      offset[i] = options.noise * datasets::uniform(rng, 0.0, 1.0) * w.plans.back().diagonal;
+      offset[i] = options.noise * datasets::uniform(rng, 0.0, 1.0) * w.plans.back().diagonal();
     }
     std::vector<Point> points(count);
     // P(t) in double (Curve::point, de Casteljau): the profile measures speed; the accuracy
@@ -87,7 +88,7 @@ int run_profile(const ProfileOptions& options) {
   for (std::size_t c = 0; c < w.plans.size(); ++c) invert(w.plans[c], w.points[c], results[c], invert_options);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   StageSeconds stages;  // (into the same results: a point's answer does not depend on the pass)
-  for (std::size_t c = 0; c < w.plans.size(); ++c) invert(w.plans[c], w.points[c], results[c], invert_options, &stages);
+  for (std::size_t c = 0; c < w.plans.size(); ++c) invert(w.plans[c], w.points[c], results[c], invert_options, stages);
 
   std::size_t total = 0, ok = 0, fast = 0, certified = 0;
   double max_dt = 0;

@@ -23,6 +23,7 @@
 #include "io/npy.hpp"
 #include "io/point_readers.hpp"
 #include "io/quote.hpp"
+#include "io/read_points_csv.hpp"
 
 namespace bezinv {
 namespace {
@@ -356,7 +357,7 @@ std::unique_ptr<PointReader> open_points(const std::string& path, const std::vec
   return open_points_csv(path, curves);
 }
 
-std::vector<PointRow> read_points_csv(const std::string& path, const std::vector<Curve>& curves) {
+std::vector<PointRow> detail::read_points_csv(const std::string& path, const std::vector<Curve>& curves) {
   const std::unique_ptr<PointReader> reader = open_points_csv(path, curves);
   std::vector<PointRow> rows;
   constexpr std::size_t kStep = 1 << 16;

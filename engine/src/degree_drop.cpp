@@ -11,7 +11,7 @@ namespace bezinv::detail {
 
 // The leading power coefficient is affine in the point, from the plan's four; the bound is
 // power_leading_bound of p and q, sum_i C(n,i) |X_i - u0 W_i|.
-bool degree_drops(const InversionPlan& plan, double u0, double v0) {
+bool degree_drops(const PlanData& plan, double u0, double v0) {
   double bound_p = 0.0, bound_q = 0.0;
   for (int i = 0; i <= plan.degree; ++i) {
     const double c = binomial(plan.degree, i);
@@ -28,7 +28,7 @@ bool degree_drops(const InversionPlan& plan, double u0, double v0) {
 // the rounding of both sums, ~n eps relative). Only where some point passes it are the exact bounds
 // computed, lanes innermost so that the loops vectorize. The check cost 7% of the whole pipeline
 // at degree 3 with the exact bounds for every point (perf).
-void degree_drops_batch(const InversionPlan& plan, const double* u, const double* v, std::size_t count,
+void degree_drops_batch(const PlanData& plan, const double* u, const double* v, std::size_t count,
                         std::uint8_t* drops) {
   const int n = plan.degree;
   double ax = 0, bx = 0, ay = 0, by = 0;

@@ -8,17 +8,17 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "bezinv/plan.hpp"
+#include "plan_data.hpp"
 
 namespace bezinv::detail {
 
 // For one point (u0, v0) in normalized coordinates: the reference.
-bool degree_drops(const InversionPlan& plan, double u0, double v0);
+bool degree_drops(const PlanData& plan, double u0, double v0);
 
 // The same for count points at once: drops[l] = degree_drops(plan, u[l], v[l]), bit for bit the
 // same decision (the same operations per lane), with a cheap test first that rules out almost
 // every point in O(1) instead of O(n).
-void degree_drops_batch(const InversionPlan& plan, const double* u, const double* v, std::size_t count,
+void degree_drops_batch(const PlanData& plan, const double* u, const double* v, std::size_t count,
                         std::uint8_t* drops);
 
 }  // namespace bezinv::detail

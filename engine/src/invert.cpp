@@ -2,9 +2,12 @@
 // engine/src/pipeline/ (docs/README.md walks a point through it).
 #include "bezinv/invert.hpp"
 
+#include "bezinv/profile.hpp"
+
 #include "bezinv/kernels/batch.hpp"
 #include "pipeline/batch.hpp"
 #include "pipeline/schedule.hpp"
+#include "plan_data.hpp"
 
 namespace bezinv {
 
@@ -40,14 +43,20 @@ std::string_view active_kernel_name() {
 PointResult invert_point(const InversionPlan& plan, Point point, const InvertOptions& options) {
   PointResult r;
   const detail::QueueScope scope;
-  detail::invert_batch(plan, &point, &r, 1, options, nullptr);
-  detail::flush_queues(plan, options, nullptr);
+  const detail::PlanData& data = detail::plan_data(plan);
+  detail::invert_batch(data, &point, &r, 1, options, nullptr);
+  detail::flush_queues(data, options, nullptr);
   return r;
 }
 
 void invert(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
-            const InvertOptions& options, StageSeconds* stages) {
-  detail::invert_curve(plan, points, results, options, stages);
+            const InvertOptions& options) {
+  detail::invert_curve(detail::plan_data(plan), points, results, options, nullptr);
+}
+
+void invert(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
+            const InvertOptions& options, StageSeconds& stages) {
+  detail::invert_curve(detail::plan_data(plan), points, results, options, &stages);
 }
 
 void invert(std::span<const InversionPlan> plans, std::span<const int> curve_of, std::span<const Point> points,

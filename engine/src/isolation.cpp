@@ -108,7 +108,7 @@ struct Piece {
 
 // Piece j of K of the normalized curve into p: its box (written into the plan's) and what the
 // bounds around it need.
-void piece(InversionPlan& plan, int j, int K, const CoordinateProducts& products, Piece& p) {
+void piece(PlanData& plan, int j, int K, const CoordinateProducts& products, Piece& p) {
   const int n = plan.degree;
   const double inf = std::numeric_limits<double>::infinity();
   const double a = static_cast<double>(j) / K, b = static_cast<double>(j + 1) / K;  // exact
@@ -170,7 +170,7 @@ void piece(InversionPlan& plan, int j, int K, const CoordinateProducts& products
 // The bounds of piece j over N, the pieces first..last around it (isolation.hpp): cos(2 alpha) v
 // into isolation_monotone[j], and the distance below which the distance has one stationary point
 // on N into isolation_unique[j]; 0 where they do not apply.
-void bounds_around(InversionPlan& plan, int j, int K, const Piece* const* around, int count) {
+void bounds_around(PlanData& plan, int j, int K, const Piece* const* around, int count) {
   for (int q = 0; q < count; ++q)
     if (!around[q]->positive) return;
   // c: the chord of N.
@@ -222,7 +222,7 @@ int isolation_piece_count(int degree) {
   return kIsolationMaxPieces;
 }
 
-void isolation_pieces(InversionPlan& plan) {
+void isolation_pieces(PlanData& plan) {
   plan.isolation_pieces = 0;
   plan.isolation_boxes.clear();
   plan.isolation_far.clear();
@@ -281,7 +281,7 @@ void isolation_pieces(InversionPlan& plan) {
 
 namespace {
 // The piece [j/K, (j+1)/K] that holds t in [0, 1] (t = 1 in the last).
-int piece_of(const InversionPlan& plan, double t) {
+int piece_of(const PlanData& plan, double t) {
   return std::min(plan.isolation_pieces - 1, static_cast<int>(t * plan.isolation_pieces));
 }
 
@@ -290,12 +290,12 @@ double isolation_limit(double tolerance) { return tolerance * (1 + 1e-12); }
 
 // Around t (in piece j): every stationary point of the distance on N lies within
 // distance / monotone of t, and below isolation_unique there is only one, t itself.
-bool isolated_around(const InversionPlan& plan, int j, double distance) {
+bool isolated_around(const PlanData& plan, int j, double distance) {
   return distance < plan.isolation_monotone[j] * kDistinctParameterGap || distance < plan.isolation_unique[j];
 }
 }  // namespace
 
-void isolated_by_far_boxes(const InversionPlan& plan, const double* t, const double* distance, double tolerance,
+void isolated_by_far_boxes(const PlanData& plan, const double* t, const double* distance, double tolerance,
                            std::size_t count, std::uint8_t* certified) {
   if (plan.isolation_monotone.empty()) {
     std::fill_n(certified, count, std::uint8_t{0});
@@ -309,7 +309,7 @@ void isolated_by_far_boxes(const InversionPlan& plan, const double* t, const dou
   }
 }
 
-bool isolated(const InversionPlan& plan, double u0, double v0, double t, double distance, double tolerance) {
+bool isolated(const PlanData& plan, double u0, double v0, double t, double distance, double tolerance) {
   const int K = plan.isolation_pieces;
   if (plan.isolation_monotone.empty() || !(t >= 0.0 && t <= 1.0)) return false;
   const int j = piece_of(plan, t);
@@ -336,7 +336,7 @@ bool isolated(const InversionPlan& plan, double u0, double v0, double t, double 
   return true;
 }
 
-bool nearest_on_segment(const InversionPlan& plan, double u0, double v0, double t, double distance) {
+bool nearest_on_segment(const PlanData& plan, double u0, double v0, double t, double distance) {
   if (plan.isolation_unique.empty() || !(t >= 0.0 && t <= 1.0)) return false;
   return distance < plan.isolation_unique[piece_of(plan, t)] && isolated(plan, u0, v0, t, distance, distance);
 }

@@ -45,7 +45,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "bezinv/plan.hpp"
+#include "plan_data.hpp"
 
 namespace bezinv::detail {
 
@@ -55,24 +55,24 @@ int isolation_piece_count(int degree);
 
 // Fills plan.isolation_boxes, isolation_far, isolation_monotone and isolation_unique from the
 // normalized curve (make_plan).
-void isolation_pieces(InversionPlan& plan);
+void isolation_pieces(PlanData& plan);
 
 // True when no parameter distinct from t (by more than kDistinctParameterGap) can be where a
 // refinement of the distance to (u0, v0) ends within `tolerance`; `distance` is |P(t) - (u0, v0)|,
 // all in normalized units. False whenever the certificate does not apply.
-bool isolated(const InversionPlan& plan, double u0, double v0, double t, double distance, double tolerance);
+bool isolated(const PlanData& plan, double u0, double v0, double t, double distance, double tolerance);
 
 // The first test of isolated() for `count` lanes at once, in a loop that vectorizes (the fast
 // path's common case): certified[l] = 1 where the distance to the boxes far from t[l] alone proves
 // isolated(plan, u0, v0, t[l], distance[l], tolerance), whatever the point; 0 where isolated()
 // must decide (it may still certify, testing the point against each box).
-void isolated_by_far_boxes(const InversionPlan& plan, const double* t, const double* distance, double tolerance,
+void isolated_by_far_boxes(const PlanData& plan, const double* t, const double* distance, double tolerance,
                            std::size_t count, std::uint8_t* certified);
 
 // True when P(t), at `distance` from (u0, v0), is the nearest point of the whole segment: the
 // certificate with the point's own distance for the tolerance, and the distance below
 // isolation_unique (t the only stationary point around it, not only the ones within
 // kDistinctParameterGap). t must be a stationary point of the distance (the caller checks it).
-bool nearest_on_segment(const InversionPlan& plan, double u0, double v0, double t, double distance);
+bool nearest_on_segment(const PlanData& plan, double u0, double v0, double t, double distance);
 
 }  // namespace bezinv::detail

@@ -11,8 +11,10 @@
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/tolerances.hpp"
+#include "null_vector_read_out.hpp"
 
 namespace bezinv {
+namespace detail {
 
 int null_vector_pair(std::span<const double> z) {
   const int size = static_cast<int>(z.size());
@@ -25,15 +27,19 @@ int null_vector_pair(std::span<const double> z) {
   return std::abs(z[k - 1]) >= std::abs(z[k + 1]) ? k : k + 1;
 }
 
+}  // namespace detail
+
 double parameter_from_null_vector(std::span<const double> z) {
   const int size = static_cast<int>(z.size());
-  const int i = null_vector_pair(z);
+  const int i = detail::null_vector_pair(z);
   // z_i / z_{i-1} = (size - i) t / (i (1 - t))  =>  t = i z_i / (i z_i + (size - i) z_{i-1}).
   const double a = i * z[i];
   const double denom = a + (size - i) * z[i - 1];
   if (denom == 0.0) return std::numeric_limits<double>::quiet_NaN();
   return a / denom;
 }
+
+namespace detail {
 
 double bernstein_form_defect(std::span<const double> z, double t) {
   const int size = static_cast<int>(z.size());
@@ -51,6 +57,8 @@ double bernstein_form_defect(std::span<const double> z, double t) {
   }
   return std::sqrt(r2);
 }
+
+}  // namespace detail
 
 int parameters_from_null_space(std::span<const double> u, std::span<const double> v, double t[2]) {
   const int size = static_cast<int>(u.size());

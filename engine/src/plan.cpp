@@ -1,4 +1,4 @@
-#include "bezinv/plan.hpp"
+#include "plan_data.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <numbers>
 #include <numeric>
@@ -65,7 +66,7 @@ std::vector<std::array<double, 2>> control_points(const Curve& c) {
 // Whether the normalized curve lies on a straight line: its distance from the line through two of
 // its points, a rational function whose numerator has degree at most 2n, vanishes at 2n + 1
 // parameters (to kVanishingBezoutRatio of the curve's size), so it vanishes everywhere.
-bool on_a_line(const InversionPlan& plan) {
+bool on_a_line(const detail::PlanData& plan) {
   const int count = 2 * plan.degree + 1;
   std::vector<std::array<double, 2>> p(count);
   for (int k = 0; k < count; ++k) p[k] = plan.normalized_point(static_cast<double>(k) / (count - 1));
@@ -86,12 +87,14 @@ bool on_a_line(const InversionPlan& plan) {
 
 }  // namespace
 
-std::array<double, 2> InversionPlan::normalized_point(double t) const {
+namespace detail {
+
+std::array<double, 2> PlanData::normalized_point(double t) const {
   return {bernstein_value(x_num, t) / bernstein_value(x_den, t),
           bernstein_value(y_num, t) / bernstein_value(y_den, t)};
 }
 
-void bezout_at(const InversionPlan& plan, double u0, double v0, std::span<double> out) {
+void bezout_at(const PlanData& plan, double u0, double v0, std::span<double> out) {
   const int nn = plan.degree * plan.degree;
   if (plan.common_denominator) {
     for (int i = 0; i < nn; ++i) out[i] = plan.B0[i] - u0 * plan.Bx[i] - v0 * plan.By[i];
@@ -101,9 +104,9 @@ void bezout_at(const InversionPlan& plan, double u0, double v0, std::span<double
   }
 }
 
-InversionPlan make_plan(const Curve& given) {
+PlanData make_plan_data(const Curve& given) {
   validate(given);
-  InversionPlan plan;
+  PlanData plan;
   plan.curve = given;
   plan.input_degree = given.degree();
   // A factor shared by all the polynomials would give B a null direction at every point
@@ -234,6 +237,31 @@ InversionPlan make_plan(const Curve& given) {
   }
 
   return plan;
+}
+
+}  // namespace detail
+
+InversionPlan::InversionPlan() {
+  static const auto empty = [] {
+    auto data = std::make_shared<detail::PlanData>();
+    data->usable = false;
+    data->reason = "no curve (an empty plan)";
+    return std::shared_ptr<const detail::PlanData>(std::move(data));
+  }();
+  data_ = empty;
+}
+
+InversionPlan::InversionPlan(std::shared_ptr<const detail::PlanData> data) : data_(std::move(data)) {}
+
+const Curve& InversionPlan::curve() const { return data_->curve; }
+int InversionPlan::input_degree() const { return data_->input_degree; }
+int InversionPlan::degree() const { return data_->degree; }
+double InversionPlan::diagonal() const { return data_->diagonal; }
+bool InversionPlan::usable() const { return data_->usable; }
+const char* InversionPlan::reason() const { return data_->reason; }
+
+InversionPlan make_plan(const Curve& curve) {
+  return InversionPlan(std::make_shared<const detail::PlanData>(detail::make_plan_data(curve)));
 }
 
 void make_plans(std::span<const Curve> curves, std::span<const std::size_t> indices, std::span<InversionPlan> plans,

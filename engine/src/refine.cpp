@@ -20,7 +20,7 @@ struct Four {
   std::array<double, kMaxDegree + 1> a, b, c, d;
 };
 
-void load(const InversionPlan& plan, Four& f) {
+void load(const PlanData& plan, Four& f) {
   const std::size_t count = plan.x_num.size();
   std::copy_n(plan.x_num.begin(), count, f.a.begin());
   std::copy_n(plan.x_den.begin(), count, f.b.begin());
@@ -49,14 +49,14 @@ double length(double dx, double dy) {
 
 }  // namespace
 
-std::array<double, 2> curve_point(const InversionPlan& plan, double t) {
+std::array<double, 2> curve_point(const PlanData& plan, double t) {
   Four f;
   load(plan, f);
   de_casteljau(f, plan.degree, plan.degree, t);
   return {f.a[0] / f.b[0], f.c[0] / f.d[0]};
 }
 
-CurveJet curve_jet(const InversionPlan& plan, double t) {
+CurveJet curve_jet(const PlanData& plan, double t) {
   // Run de Casteljau until three points remain, then read the jet off them (as bernstein_jet).
   const int n = plan.degree;
   Four f;
@@ -76,12 +76,12 @@ CurveJet curve_jet(const InversionPlan& plan, double t) {
   return j;
 }
 
-double distance(const InversionPlan& plan, double u0, double v0, double t) {
+double distance(const PlanData& plan, double u0, double v0, double t) {
   const auto p = curve_point(plan, t);
   return length(p[0] - u0, p[1] - v0);
 }
 
-Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double t0, bool stay_on_segment) {
+Refined refine_parameter(const PlanData& plan, double u0, double v0, double t0, bool stay_on_segment) {
   constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
   if (!std::isfinite(t0)) return {t0, std::nan("")};
   double t = stay_on_segment ? std::clamp(t0, 0.0, 1.0) : t0;
@@ -152,7 +152,7 @@ Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double
 
 int nearest_sample_count(int degree) { return std::max(32, kNearestSamplesPerDegree * degree); }
 
-double nearest_parameter_on_segment(const InversionPlan& plan, double u0, double v0, double hint) {
+double nearest_parameter_on_segment(const PlanData& plan, double u0, double v0, double hint) {
   // Fixed-size workspaces: the search runs per point, so it must not allocate.
   constexpr int kMaxSamples = kNearestSamplesPerDegree * kMaxDegree;
   const int samples = nearest_sample_count(plan.degree);

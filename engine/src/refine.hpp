@@ -1,7 +1,7 @@
 #pragma once
 // Geometry of the normalized curve for refinement and nearest-point search (engine internal).
 #include "bezinv/kernels/batch.hpp"
-#include "bezinv/plan.hpp"
+#include "plan_data.hpp"
 #include "bezinv/tolerances.hpp"
 
 namespace bezinv::detail {
@@ -11,20 +11,20 @@ inline constexpr kernels::NewtonSettings kNewtonSettings{kNewtonMaxIterations, k
                                                          kNewtonMaxHalvings, kNewtonFinalStep};
 
 // The normalized curve as the kernels take it.
-inline kernels::RationalCurve kernel_curve(const InversionPlan& plan) {
+inline kernels::RationalCurve kernel_curve(const PlanData& plan) {
   return {plan.degree, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(), plan.y_den.data()};
 }
 
 // P(t), P'(t), P''(t) of the normalized curve. For x = N/D:
 //   x' = (N' - D' x) / D,   x'' = (N'' - 2 D' x' - D'' x) / D.
 struct CurveJet { double x, y, dx, dy, ddx, ddy; };
-CurveJet curve_jet(const InversionPlan& plan, double t);
+CurveJet curve_jet(const PlanData& plan, double t);
 
-// P(t) alone (the same numbers as InversionPlan::normalized_point, in one fused pass).
-std::array<double, 2> curve_point(const InversionPlan& plan, double t);
+// P(t) alone (the same numbers as PlanData::normalized_point, in one fused pass).
+std::array<double, 2> curve_point(const PlanData& plan, double t);
 
 // |P(t) - (u0, v0)| in normalized units (NaN where a denominator vanishes).
-double distance(const InversionPlan& plan, double u0, double v0, double t);
+double distance(const PlanData& plan, double u0, double v0, double t);
 
 // A parameter and |P(t) - P0| there (the refinement has it at hand; recomputing it would be the
 // most expensive part of refining an on-curve point).
@@ -35,7 +35,7 @@ struct Refined { double t, distance; };
 // it does), so the iterate stays in the basin it started in; with `stay_on_segment` it is also
 // clamped to [0,1]. Returns the last accepted iterate and its distance (measured before the last
 // step where that step moved t by a few ulps: the same to rounding).
-Refined refine_parameter(const InversionPlan& plan, double u0, double v0, double t0, bool stay_on_segment);
+Refined refine_parameter(const PlanData& plan, double u0, double v0, double t0, bool stay_on_segment);
 
 // The number of intervals S of the nearest-point search's samples k / S at degree n.
 int nearest_sample_count(int degree);
@@ -43,6 +43,6 @@ int nearest_sample_count(int degree);
 // Parameter of the nearest point of the segment [0,1] to (u0, v0): dense sampling finds every
 // basin, each local minimum is refined, the best one wins. The samples are plan.nearest_samples
 // (make_plan computes them). `hint` (if in [0,1]) is refined too.
-double nearest_parameter_on_segment(const InversionPlan& plan, double u0, double v0, double hint);
+double nearest_parameter_on_segment(const PlanData& plan, double u0, double v0, double hint);
 
 }  // namespace bezinv::detail

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bezinv/bernstein.hpp"
+#include "plan_data.hpp"
 #include "bezinv/bezout.hpp"
 #include "bezinv/curve.hpp"
 #include "bezinv/datasets/random_curve.hpp"
@@ -195,24 +196,24 @@ TEST(BezoutAt, MatchesDirectBezoutMatrixForEveryKind) {
     for (int n = 1; n <= 20; ++n) {
       const Curve curve = random_curve(rng, kind, n);
       const InversionPlan plan = make_plan(curve);
-      ASSERT_TRUE(plan.usable) << to_string(kind) << " n = " << n << ": " << plan.reason;
-      const int m = plan.degree;
-      ASSERT_EQ(static_cast<int>(plan.x_num.size()), m + 1);
+      ASSERT_TRUE(plan.usable()) << to_string(kind) << " n = " << n << ": " << plan.reason();
+      const int m = plan.degree();
+      ASSERT_EQ(static_cast<int>(bezinv::detail::plan_data(plan).x_num.size()), m + 1);
       for (int trial = 0; trial < 3; ++trial) {
         // Near the curve (in and slightly outside the segment), where B is nearly singular.
         const auto xy = curve.point(datasets::uniform(rng, -0.1, 1.1));
-        const auto uv = plan.normalize(xy[0] + datasets::uniform(rng, -1e-3, 1e-3),
+        const auto uv = bezinv::detail::plan_data(plan).normalize(xy[0] + datasets::uniform(rng, -1e-3, 1e-3),
                                        xy[1] + datasets::uniform(rng, -1e-3, 1e-3));
         std::vector<double> at(static_cast<std::size_t>(m) * m, std::nan(""));
-        bezout_at(plan, uv[0], uv[1], at);
+        bezinv::detail::bezout_at(bezinv::detail::plan_data(plan), uv[0], uv[1], at);
 
         std::vector<double> p(m + 1), q(m + 1);
         exact::Poly pe(m + 1), qe(m + 1);
         for (int i = 0; i <= m; ++i) {
-          p[i] = plan.x_num[i] - uv[0] * plan.x_den[i];
-          q[i] = plan.y_num[i] - uv[1] * plan.y_den[i];
-          pe[i] = mpq_class(plan.x_num[i]) - mpq_class(uv[0]) * mpq_class(plan.x_den[i]);
-          qe[i] = mpq_class(plan.y_num[i]) - mpq_class(uv[1]) * mpq_class(plan.y_den[i]);
+          p[i] = bezinv::detail::plan_data(plan).x_num[i] - uv[0] * bezinv::detail::plan_data(plan).x_den[i];
+          q[i] = bezinv::detail::plan_data(plan).y_num[i] - uv[1] * bezinv::detail::plan_data(plan).y_den[i];
+          pe[i] = mpq_class(bezinv::detail::plan_data(plan).x_num[i]) - mpq_class(uv[0]) * mpq_class(bezinv::detail::plan_data(plan).x_den[i]);
+          qe[i] = mpq_class(bezinv::detail::plan_data(plan).y_num[i]) - mpq_class(uv[1]) * mpq_class(bezinv::detail::plan_data(plan).y_den[i]);
         }
         const std::vector<double> direct = engine_bezout(p, q);
         const exact::Matrix reference = exact::bezout_recurrence(pe, qe);
@@ -222,9 +223,9 @@ TEST(BezoutAt, MatchesDirectBezoutMatrixForEveryKind) {
         // vanishing quantity means nothing). Both computations round at this scale.
         double scale = 0.0, diff = 0.0, diff_exact = 0.0;
         for (std::size_t k = 0; k < direct.size(); ++k) {
-          const double bxy = plan.Bxy.empty() ? 0.0 : std::abs(plan.Bxy[k]);
-          scale = std::max(scale, std::abs(plan.B0[k]) + std::abs(uv[0] * plan.Bx[k]) +
-                                      std::abs(uv[1] * plan.By[k]) + std::abs(uv[0] * uv[1]) * bxy);
+          const double bxy = bezinv::detail::plan_data(plan).Bxy.empty() ? 0.0 : std::abs(bezinv::detail::plan_data(plan).Bxy[k]);
+          scale = std::max(scale, std::abs(bezinv::detail::plan_data(plan).B0[k]) + std::abs(uv[0] * bezinv::detail::plan_data(plan).Bx[k]) +
+                                      std::abs(uv[1] * bezinv::detail::plan_data(plan).By[k]) + std::abs(uv[0] * uv[1]) * bxy);
           diff = std::max(diff, std::abs(direct[k] - at[k]));
           diff_exact = std::max(diff_exact, exact::abs(mpq_class(at[k]) - reference.a[k]).get_d());
         }
@@ -255,19 +256,19 @@ TEST(BezoutAt, NormalizationOnlyScalesB) {
     for (int n = 1; n <= 20; ++n) {
       const Curve curve = random_curve(rng, kind, n);
       const InversionPlan plan = make_plan(curve);
-      ASSERT_EQ(plan.degree, n) << "a random curve is not degree-elevated";
+      ASSERT_EQ(plan.degree(), n) << "a random curve is not degree-elevated";
       double xs = 0.0, ys = 0.0;
       for (int i = 0; i <= n; ++i) {
         xs = std::max(xs, std::abs(curve.x_den[i]));
         ys = std::max(ys, std::abs(curve.y_den[i]));
       }
-      const mpq_class factor = mpq_class(plan.scale) * mpq_class(plan.scale) * mpq_class(xs) * mpq_class(ys);
+      const mpq_class factor = mpq_class(bezinv::detail::plan_data(plan).scale) * mpq_class(bezinv::detail::plan_data(plan).scale) * mpq_class(xs) * mpq_class(ys);
       for (int trial = 0; trial < 3; ++trial) {
         const auto xy = curve.point(datasets::uniform(rng, -0.1, 1.1));
         const double x0 = xy[0] + datasets::uniform(rng, -1e-3, 1e-3), y0 = xy[1] + datasets::uniform(rng, -1e-3, 1e-3);
-        const auto uv = plan.normalize(x0, y0);
+        const auto uv = bezinv::detail::plan_data(plan).normalize(x0, y0);
         std::vector<double> at(static_cast<std::size_t>(n) * n);
-        bezout_at(plan, uv[0], uv[1], at);
+        bezinv::detail::bezout_at(bezinv::detail::plan_data(plan), uv[0], uv[1], at);
         exact::Poly p(n + 1), q(n + 1);
         for (int i = 0; i <= n; ++i) {
           p[i] = mpq_class(curve.x_num[i]) - mpq_class(x0) * mpq_class(curve.x_den[i]);
@@ -300,8 +301,8 @@ TEST(BezoutAt, CommonDenominatorMakesBxyVanish) {
   std::mt19937_64 rng(5);
   for (int n = 1; n <= 12; ++n) {
     const InversionPlan plan = make_plan(random_curve(rng, CurveKind::rational_bezier, n));
-    EXPECT_TRUE(plan.common_denominator);
-    for (double v : plan.Bxy) EXPECT_EQ(v, 0.0) << "n = " << n;
+    EXPECT_TRUE(bezinv::detail::plan_data(plan).common_denominator);
+    for (double v : bezinv::detail::plan_data(plan).Bxy) EXPECT_EQ(v, 0.0) << "n = " << n;
   }
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bezinv/bernstein.hpp"
+#include "plan_data.hpp"
 #include "bezinv/plan.hpp"
 #include "degree_drop.hpp"
 #include "support/random_plan.hpp"
@@ -20,8 +21,8 @@ namespace {
 
 // A plan with only what the degree-drop test reads: the degree, the four polynomials and their
 // leading power coefficients.
-InversionPlan random_plan(int n, bool common, std::mt19937_64& rng) {
-  InversionPlan plan = test_support::random_polynomials_plan(n, common, rng);
+detail::PlanData random_plan(int n, bool common, std::mt19937_64& rng) {
+  detail::PlanData plan = test_support::random_polynomials_plan(n, common, rng);
   plan.lead_x_num = power_leading_coefficient(plan.x_num);
   plan.lead_x_den = power_leading_coefficient(plan.x_den);
   plan.lead_y_num = power_leading_coefficient(plan.y_num);
@@ -36,7 +37,7 @@ TEST(DegreeDrop, BatchDecidesAsTheReferenceAndFindsTheConstructedDrop) {
   int drops_found = 0, points = 0;
   for (int n = 1; n <= 24; ++n)
     for (bool common : {true, false}) {
-      const InversionPlan plan = random_plan(n, common, rng);
+      const detail::PlanData plan = random_plan(n, common, rng);
       const double u_star = plan.lead_x_num / plan.lead_x_den, v_star = plan.lead_y_num / plan.lead_y_den;
       std::vector<double> u, v;
       std::vector<int> expected;  // 1: must drop, 0: must not, -1: either (near the threshold)
@@ -75,7 +76,7 @@ TEST(DegreeDrop, BatchDecidesAsTheReferenceAndFindsTheConstructedDrop) {
 TEST(DegreeDrop, NoPointOfABatchFarFromTheDropPointDrops) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
-  const InversionPlan plan = random_plan(5, true, rng);
+  const detail::PlanData plan = random_plan(5, true, rng);
   std::vector<double> u(64), v(64);
   for (std::size_t l = 0; l < u.size(); ++l) {
     u[l] = plan.lead_x_num / plan.lead_x_den + 0.1 + coordinate(rng) * 0.05;

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "bezinv/curve.hpp"
+#include "plan_data.hpp"
 #include "bezinv/datasets/curve_sampling.hpp"
 #include "bezinv/datasets/degree_elevation.hpp"
 #include "bezinv/datasets/improper.hpp"
@@ -120,7 +121,7 @@ const std::vector<Case>& random_cases() {
 // ---- the accuracy model --------------------------------------------------------------------------
 
 double residual_bound(const Case& c, const KnownPoint& k) {
-  return kSlack * (c.degree + 1) * kUnitRoundoff * std::max(k.scale, c.plan.diagonal);
+  return kSlack * (c.degree + 1) * kUnitRoundoff * std::max(k.scale, c.plan.diagonal());
 }
 
 double parameter_bound(const Case& c, const KnownPoint& k) {
@@ -160,7 +161,7 @@ struct Measured {
 
 // A point on the curve (segment or extension): status, t and residual against the model.
 void expect_on_curve(const Case& c, const KnownPoint& k, const PointResult& r, Status expected, Measured& m) {
-  const double diagonal = c.plan.diagonal;
+  const double diagonal = c.plan.diagonal();
   ASSERT_EQ(r.status, expected) << describe(c, k, r);
   const double dt = std::abs(r.t - k.t);
   const double e_t = parameter_bound(c, k);
@@ -175,7 +176,7 @@ void expect_on_curve(const Case& c, const KnownPoint& k, const PointResult& r, S
 
 // A point off the curve with a known nearest point of the segment.
 void expect_nearest(const Case& c, const KnownPoint& k, const PointResult& r, Status expected, Measured& m) {
-  const double diagonal = c.plan.diagonal;
+  const double diagonal = c.plan.diagonal();
   ASSERT_EQ(r.status, expected) << describe(c, k, r);
   const double dt = std::abs(r.t - k.t);
   // Near the nearest point the distance is flat to first order: the nearest-point condition
@@ -297,8 +298,8 @@ TEST(InvertProperty, DegreeElevatedCurvesReduceAndInvertAsWell) {
         Case c = make_case(case_name(kind, degree, ControlPolygon::perturbed_arc, seed) + " elevated " +
                                std::to_string(times) + "x",
                            datasets::degree_elevated(original, times), seed);
-        ASSERT_EQ(c.plan.input_degree, degree + times) << c.name;
-        EXPECT_EQ(c.plan.degree, degree) << c.name;
+        ASSERT_EQ(c.plan.input_degree(), degree + times) << c.name;
+        EXPECT_EQ(c.plan.degree(), degree) << c.name;
         // Accuracy as for the original: the model uses the original degree.
         c.degree = degree;
         for (const KnownPoint& k : datasets::segment_points(*c.sampling, 6, rng))
@@ -340,7 +341,7 @@ TEST(InvertProperty, ImproperCurvesAnswerEachPointAtItsParameterOnTheSegment) {
       const Case c = make_case(case_name(kind, m, ControlPolygon::perturbed_arc, seed) + " as Q(t^2), degree " +
                                    std::to_string(2 * m),
                                datasets::improper(q), seed);
-      ASSERT_TRUE(c.plan.usable) << c.name << ": " << c.plan.reason;
+      ASSERT_TRUE(c.plan.usable()) << c.name << ": " << c.plan.reason();
       // Away from t = 0, where P'(0) = 0 and t is known only to the square root of the rounding.
       // (Not datasets::segment_points: its isolation check refuses every point here, since the
       // extension retraces the segment.)
@@ -459,7 +460,7 @@ TEST(InvertProperty, BatchedEqualsSinglePointBitForBit) {
 TEST(InvertProperty, QueuedSvdLanesAnswerAsAlone) {
   int ran = 0;
   for (const Case& c : random_cases()) {
-    if (c.plan.degree < 3 || c.plan.degree > 16) continue;
+    if (c.plan.degree() < 3 || c.plan.degree() > 16) continue;
     if (ran++ == 6) break;
     std::mt19937_64 rng(c.seed + 11);
     const std::vector<KnownPoint> on = datasets::segment_points(*c.sampling, 1500, rng);
@@ -520,14 +521,14 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
     // No gap estimate exactly where the isolation certificate decided (degree >= 3, on the segment):
     // no other parameter of the segment is within the tolerance, so the SVD path's search for one,
     // wherever its sigma_{n-1} sent it there, found none (the statuses agree above).
-    const auto p0 = c.plan.normalize(k.point.x, k.point.y);
-    const bool certified = c.plan.degree >= 3 && fast.status == Status::ok &&
-                           detail::isolated(c.plan, p0[0], p0[1], fast.t, fast.residual / c.plan.scale,
-                                            tolerance * c.plan.diagonal / c.plan.scale);
+    const auto p0 = bezinv::detail::plan_data(c.plan).normalize(k.point.x, k.point.y);
+    const bool certified = c.plan.degree() >= 3 && fast.status == Status::ok &&
+                           detail::isolated(bezinv::detail::plan_data(c.plan), p0[0], p0[1], fast.t, fast.residual / bezinv::detail::plan_data(c.plan).scale,
+                                            tolerance * c.plan.diagonal() / bezinv::detail::plan_data(c.plan).scale);
     EXPECT_EQ(std::isnan(fast.sigma_next), certified) << describe(c, k, fast);
     if (certified) {
       ++certified_rows;
-      m.add(dt, dt / parameter_bound(c, k), std::abs(fast.residual - svd.residual) / c.plan.diagonal);
+      m.add(dt, dt / parameter_bound(c, k), std::abs(fast.residual - svd.residual) / c.plan.diagonal());
       return;
     }
     ++gap_rows;
@@ -539,7 +540,7 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
     }
     // Within the factor the gate allows for (tolerances.hpp, kFastPathGapRatio), with a margin.
     EXPECT_LE(fast.sigma_next, 1.8 * svd.sigma_next) << describe(c, k, fast);
-    m.add(dt, dt / parameter_bound(c, k), std::abs(fast.residual - svd.residual) / c.plan.diagonal);
+    m.add(dt, dt / parameter_bound(c, k), std::abs(fast.residual - svd.residual) / c.plan.diagonal());
   };
   for (const Case& c : random_cases()) {
     std::mt19937_64 rng(c.seed + 8);
@@ -606,7 +607,7 @@ TEST(InvertProperty, OffTheCurveTheFastPathAnswersOnlyWhereItsBranchIsTheNearest
         const Point on = datasets::on_curve(curve, t), ahead = datasets::on_curve(curve, t + 1e-6);
         const double tx = ahead.x - on.x, ty = ahead.y - on.y, length = std::hypot(tx, ty);
         const double off = std::copysign(std::pow(10.0, datasets::uniform(rng, -4.0, -1.0)), datasets::uniform(rng, -1.0, 1.0)) *
-                           plan.diagonal;
+                           plan.diagonal();
         const Point p{on.x - off * ty / length, on.y + off * tx / length};
         // The default tolerance, and loose ones under which the curve's extension (the SVD path's
         // second-parameter candidates walk along it) often comes within the tolerance.
@@ -644,7 +645,7 @@ TEST(InvertProperty, AlgebraicParameterWithoutRefinementIsClose) {
       ASSERT_EQ(r.status, Status::ok) << describe(c, k, r);
       const double dt = std::abs(r.t - k.t);
       EXPECT_LE(dt, kParameterError) << describe(c, k, r);
-      m.add(dt, dt / parameter_bound(c, k), std::abs(r.residual - k.distance) / c.plan.diagonal);
+      m.add(dt, dt / parameter_bound(c, k), std::abs(r.residual - k.distance) / c.plan.diagonal());
     }
   }
   EXPECT_GT(m.points, 500);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "bezinv/datasets/on_curve_points.hpp"
+#include "plan_data.hpp"
 #include "bezinv/datasets/random_curve.hpp"
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/datasets/self_intersection.hpp"
@@ -39,7 +40,7 @@ void for_each_random_plan(std::mt19937_64& rng, int first, int last, F&& f) {
   for (int n = first; n <= last; ++n)
     for (CurveKind kind : kKinds)
       for (auto polygon : {datasets::ControlPolygon::unit_square, datasets::ControlPolygon::perturbed_arc})
-        f(n, make_plan(datasets::random_curve(kind, n, rng, polygon)));
+        f(n, detail::plan_data(make_plan(datasets::random_curve(kind, n, rng, polygon))));
 }
 
 // N, the parameters of pieces j-1..j+1 of K, where piece j's bounds hold.
@@ -52,10 +53,10 @@ std::pair<double, double> around_piece(int K, int j) {
 // (all of them at K = 32: the test's time does not grow with the degree's piece count, and over
 // the plans every piece's position is drawn). Returns how many.
 template <class F>
-int for_each_bounded_piece(std::mt19937_64& rng, int first, int last, std::vector<double> InversionPlan::*field,
+int for_each_bounded_piece(std::mt19937_64& rng, int first, int last, std::vector<double> detail::PlanData::*field,
                            F&& f) {
   int bounded = 0;
-  for_each_random_plan(rng, first, last, [&](int n, const InversionPlan& plan) {
+  for_each_random_plan(rng, first, last, [&](int n, const detail::PlanData& plan) {
     const int K = plan.isolation_pieces, stride = std::max(1, K / 32);
     for (int j = 0; j < K; ++j) EXPECT_GE((plan.*field)[j], 0.0) << "n " << n << " piece " << j;
     for (int j = static_cast<int>(rng() % stride); j < K; j += stride) {
@@ -81,7 +82,7 @@ std::array<double, 2> along_normal(const detail::CurveJet& jet, double off) {
 TEST(Isolation, EveryPieceOfTheCurveLiesInItsBox) {
   std::mt19937_64 rng(5);
   int boxes = 0;
-  for_each_random_plan(rng, 2, 24, [&](int n, const InversionPlan& plan) {
+  for_each_random_plan(rng, 2, 24, [&](int n, const detail::PlanData& plan) {
       const int K = plan.isolation_pieces;
       ASSERT_EQ(K, detail::isolation_piece_count(n));
       ASSERT_EQ(plan.isolation_boxes.size(), 4u * K);
@@ -110,7 +111,7 @@ TEST(Isolation, TheCurveIsAsMonotoneAroundEachPieceAsItsBoundSays) {
   std::mt19937_64 rng(6);
   int checked = 0;
   const int bounded = for_each_bounded_piece(
-      rng, 2, 24, &InversionPlan::isolation_monotone, [&](int n, const InversionPlan& plan, int j, double m) {
+      rng, 2, 24, &detail::PlanData::isolation_monotone, [&](int n, const detail::PlanData& plan, int j, double m) {
         const auto [lo, hi] = around_piece(plan.isolation_pieces, j);
         for (int k = 0; k < 40; ++k) {
           const double t = datasets::uniform(rng, lo, hi), tau = datasets::uniform(rng, lo, hi);
@@ -136,7 +137,7 @@ TEST(Isolation, BelowTheUniquenessBoundTheDistanceHasOneMinimumAroundEachPiece) 
   std::mt19937_64 rng(12);
   int checked = 0;
   const int bounded = for_each_bounded_piece(
-      rng, 2, 20, &InversionPlan::isolation_unique, [&](int n, const InversionPlan& plan, int j, double unique) {
+      rng, 2, 20, &detail::PlanData::isolation_unique, [&](int n, const detail::PlanData& plan, int j, double unique) {
         const auto [lo, hi] = around_piece(plan.isolation_pieces, j);
         for (int k = 0; k < 4; ++k) {
           const double t = datasets::uniform(rng, j / double(plan.isolation_pieces), (j + 1) / double(plan.isolation_pieces));
@@ -169,8 +170,8 @@ TEST(Isolation, NoWalkEndsWithinTheToleranceAwayFromACertifiedParameter) {
   int certified = 0, refused = 0;
   for (int n : {3, 4, 5, 6, 8, 10, 12, 15, 20})
     for (int c = 0; c < 6; ++c) {
-      const InversionPlan plan =
-          make_plan(datasets::random_curve(kKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square));
+      const detail::PlanData plan =
+          detail::plan_data(make_plan(datasets::random_curve(kKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square)));
       for (double relative_tolerance : {1e-6, 1e-3, 3e-2}) {
         const double tolerance = relative_tolerance * plan.diagonal / plan.scale;
         for (int k = 0; k < 12; ++k) {
@@ -208,7 +209,7 @@ TEST(Isolation, TheBatchedFirstTestCertifiesOnlyWhatIsolatedCertifies) {
   for (int n : {2, 3, 5, 8, 10, 15, 20})
     for (auto polygon : {datasets::ControlPolygon::unit_square, datasets::ControlPolygon::perturbed_arc})
       for (CurveKind kind : kKinds) {
-        const InversionPlan plan = make_plan(datasets::random_curve(kind, n, rng, polygon));
+        const detail::PlanData plan = detail::plan_data(make_plan(datasets::random_curve(kind, n, rng, polygon)));
         for (double relative_tolerance : {1e-6, 1e-2}) {
           const double tolerance = relative_tolerance * plan.diagonal / plan.scale;
           constexpr std::size_t kLanes = 64;
@@ -261,8 +262,8 @@ TEST(Isolation, NoWalkEndsWithinTheToleranceAwayFromACertifiedParameterOffTheCur
   int certified = 0, certified_by_uniqueness = 0, refused = 0, past_centre = 0;
   for (int n : {2, 3, 4, 5, 6, 8, 10, 12, 15, 20})
     for (int c = 0; c < 6; ++c) {
-      const InversionPlan plan =
-          make_plan(datasets::random_curve(kKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square));
+      const detail::PlanData plan =
+          detail::plan_data(make_plan(datasets::random_curve(kKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square)));
       for (double relative_tolerance : {1e-6, 1e-3, 3e-2}) {
         const double tolerance = relative_tolerance * plan.diagonal / plan.scale;
         for (int k = 0; k < 12; ++k) {
@@ -313,8 +314,8 @@ TEST(Isolation, NearestOnSegmentIsTheNearestPointOfTheSegment) {
   int certified = 0, refused = 0;
   for (int n : {2, 3, 4, 5, 6, 8, 10, 12, 15, 20})
     for (int c = 0; c < 6; ++c) {
-      const InversionPlan plan =
-          make_plan(datasets::random_curve(kKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square));
+      const detail::PlanData plan =
+          detail::plan_data(make_plan(datasets::random_curve(kKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square)));
       constexpr int kGrid = 4000;
       std::vector<std::array<double, 2>> grid(kGrid + 1);
       for (int g = 0; g <= kGrid; ++g) grid[g] = plan.normalized_point(g / double(kGrid));
@@ -354,7 +355,7 @@ TEST(Isolation, NothingIsCertifiedAtADoublePoint) {
         continue;
       }
       (t2 - t1 < 0.1 ? near_pairs : far_pairs)++;
-      const InversionPlan plan = make_plan(curve);
+      const detail::PlanData plan = detail::plan_data(make_plan(curve));
       const double tolerance = kDefaultRelativeTolerance * plan.diagonal / plan.scale;
       for (double t : {t1, t2}) {
         const auto p = plan.normalized_point(t);
@@ -374,8 +375,8 @@ TEST(Isolation, NothingIsCertifiedAtADoublePoint) {
 
 TEST(Isolation, NotOffTheCurve) {
   std::mt19937_64 rng(10);
-  const InversionPlan plan = make_plan(
-      datasets::random_curve(CurveKind::rational_bezier, 5, rng, datasets::ControlPolygon::perturbed_arc));
+  const detail::PlanData plan = detail::plan_data(make_plan(
+      datasets::random_curve(CurveKind::rational_bezier, 5, rng, datasets::ControlPolygon::perturbed_arc)));
   const int j = static_cast<int>(0.3 * plan.isolation_pieces);
   ASSERT_GT(plan.isolation_monotone[j], 0.0);
   const auto q = plan.normalized_point(0.3);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bezinv/datasets/random_curve.hpp"
+#include "plan_data.hpp"
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/kernels/batch.hpp"
 #include "bezinv/null_vector.hpp"
@@ -33,7 +34,7 @@ TEST(NullVectorSeed, RefinesToTheKnownParameterOnBezoutMatrices) {
       for (int n : {3, 5, 8, 12, 15, 20}) {
         std::mt19937_64 rng(977 + n);
         for (int curve_index = 0; curve_index < 4; ++curve_index) {
-          const InversionPlan plan = make_plan(datasets::random_curve(kind, n, rng, polygon));
+          const detail::PlanData plan = detail::plan_data(make_plan(datasets::random_curve(kind, n, rng, polygon)));
           const std::size_t nn = static_cast<std::size_t>(n) * n;
           std::vector<double> B(nn * stride), entries(nn), z(n * stride), defect(stride), residual(stride);
           std::vector<double> t_true(kLanes), u(kLanes), v(kLanes);
@@ -42,7 +43,7 @@ TEST(NullVectorSeed, RefinesToTheKnownParameterOnBezoutMatrices) {
             const auto p = plan.normalized_point(t_true[l]);
             u[l] = p[0];
             v[l] = p[1];
-            bezout_at(plan, u[l], v[l], entries);
+            bezinv::detail::bezout_at(plan, u[l], v[l], entries);
             for (std::size_t i = 0; i < nn; ++i) B[i * stride + l] = entries[i];
           }
           for (const kernels::Implementation* impl : kernels::available_implementations()) {

@@ -46,7 +46,7 @@ std::vector<double> probe_parameters(std::mt19937_64& rng, int interior) {
 void probe(Findings& findings, const std::string& name, const Curve& curve, const std::vector<double>& parameters) {
   const ExactCurve exact(curve);
   const InversionPlan plan = make_plan(curve);
-  findings.check(plan.usable, [&] { return name + ": plan not usable: " + plan.reason; });
+  findings.check(plan.usable(), [&] { return name + ": plan not usable: " + plan.reason(); });
   std::vector<Point> points;
   std::vector<PointResult> results;
   for (double t : parameters) {
@@ -193,7 +193,7 @@ int probe_isolated(Findings& findings, const std::string& name, const Curve& cur
   const ExactCurve exact(curve);
   const datasets::CurveSampling sampling(curve, 64);
   const InversionPlan plan = make_plan(curve);
-  findings.check(plan.usable, [&] { return name + ": plan not usable: " + plan.reason; });
+  findings.check(plan.usable(), [&] { return name + ": plan not usable: " + plan.reason(); });
   int skipped = 0;
   std::vector<Point> points;
   std::vector<PointResult> results;
@@ -350,7 +350,7 @@ TEST(OrdinaryCurves, ExactlyElevatedCurves) {
                                    std::to_string(m) + " elevated " + std::to_string(times) +
                                    (scaled ? "x, exact integers" : "x, rounded") + " seed " + std::to_string(seed);
           const InversionPlan plan = make_plan(curve);
-          EXPECT_EQ(plan.degree, m) << name;
+          EXPECT_EQ(plan.degree(), m) << name;
           skipped += probe_isolated(findings, name, curve, probe_parameters(rng, 6));
           ++curves;
         }

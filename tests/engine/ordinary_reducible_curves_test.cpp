@@ -115,8 +115,8 @@ TEST(OrdinaryReducible, CommonFactorsAreRemoved) {
                                  (form == 2 ? " and " + std::to_string((f + 3) % kFactors.size()) : "") +
                                  ", given at " + std::to_string(degree) + ", seed " + std::to_string(seed);
         const InversionPlan plan = make_plan(curve), original_plan = make_plan(original_curve);
-        EXPECT_EQ(plan.input_degree, degree) << name;
-        EXPECT_EQ(plan.degree, n) << name << ": the factor was not removed";
+        EXPECT_EQ(plan.input_degree(), degree) << name;
+        EXPECT_EQ(plan.degree(), n) << name << ": the factor was not removed";
         EXPECT_EQ(curve.common_denominator(), form != 2) << name;
         const ExactCurve exact(curve), exact_original(original_curve);
         const datasets::CurveSampling sampling(original_curve, 64);

@@ -120,8 +120,8 @@ TEST(PaperExamples, CurvesMatchThePaperText) {
 // Example 2: t0 = 2 z2 / (2 z2 + 13 z1) = 1.428606867264249e-01 (Maple exact B, MATLAB SVD).
 TEST(PaperExamples, Example2AlgebraicParameter) {
   const InversionPlan plan = make_plan(example2());
-  ASSERT_TRUE(plan.usable) << plan.reason;
-  EXPECT_EQ(plan.degree, 15);
+  ASSERT_TRUE(plan.usable()) << plan.reason();
+  EXPECT_EQ(plan.degree(), 15);
   const PointResult r = invert_point(plan, {8.50665, 14.3420}, kAlgebraic);
   EXPECT_EQ(r.path, Path::bezout);
   // Measured 8.6e-14. The null vector is determined only to ~eps sigma_1 / sigma_14 by any
@@ -137,7 +137,7 @@ TEST(PaperExamples, Example2AlgebraicParameter) {
 // Example 3: t0 = z1 / (z1 + 3 z0) = 3.333333267311144e-01.
 TEST(PaperExamples, Example3AlgebraicParameter) {
   const InversionPlan plan = make_plan(example1());
-  ASSERT_TRUE(plan.usable) << plan.reason;
+  ASSERT_TRUE(plan.usable()) << plan.reason();
   const PointResult r = invert_point(plan, {3.5542169, 2.8148148}, kAlgebraic);
   EXPECT_EQ(r.path, Path::bezout);
   // Measured 1.3e-15.
@@ -148,7 +148,7 @@ TEST(PaperExamples, Example3AlgebraicParameter) {
 // Example 4: t0 = 3.333339104290224e-01.
 TEST(PaperExamples, Example4AlgebraicParameter) {
   const InversionPlan plan = make_plan(example4());
-  ASSERT_TRUE(plan.usable) << plan.reason;
+  ASSERT_TRUE(plan.usable()) << plan.reason();
   const PointResult r = invert_point(plan, {2.66667, 2.42222}, kAlgebraic);
   EXPECT_EQ(r.path, Path::bezout);
   // Measured 1.7e-16.
@@ -227,7 +227,7 @@ TEST(PaperExamples, DegreeDropPointIsOnTheExtension) {
   ASSERT_LT(dist, tolerance) << "the paper's point is on the curve within the default tolerance";
 
   const InversionPlan plan = make_plan(example1());
-  EXPECT_NEAR(plan.diagonal, std::sqrt(diag2.get_d()), 1e-15 * plan.diagonal);
+  EXPECT_NEAR(plan.diagonal(), std::sqrt(diag2.get_d()), 1e-15 * plan.diagonal());
 
   // Refined (default): the nearest point of the extension is within ~2 dist / |P'| of t_true
   // (measured error 3.1e-10, bound 9.9e-10).
@@ -236,7 +236,7 @@ TEST(PaperExamples, DegreeDropPointIsOnTheExtension) {
   const PointResult r = invert_point(plan, {0.5, -3.0395517});
   EXPECT_EQ(r.status, Status::outside_segment) << to_string(r.status) << " " << r.reason;
   EXPECT_LE(std::abs(r.t - t_true), 2.5 * dist / speed) << r.t;
-  EXPECT_LE(r.residual, dist + 1e-14 * plan.diagonal);  // + the rounding of P(t)
+  EXPECT_LE(r.residual, dist + 1e-14 * plan.diagonal());  // + the rounding of P(t)
 
   // Algebraic (the paper's Sect. 4 fallback: Sylvester at the true degrees). P0 is 7.6e-9 off
   // the curve, so the algebraic parameter is only as good as that allows: of the order of
@@ -275,8 +275,8 @@ void check_refined(const RefinedCase& k) {
   const double dist = std::sqrt(d2.get_d());
 
   const InversionPlan plan = make_plan(k.curve);
-  ASSERT_TRUE(plan.usable) << plan.reason;
-  EXPECT_NEAR(plan.diagonal, std::sqrt(diag2.get_d()), 1e-15 * plan.diagonal);
+  ASSERT_TRUE(plan.usable()) << plan.reason();
+  EXPECT_NEAR(plan.diagonal(), std::sqrt(diag2.get_d()), 1e-15 * plan.diagonal());
   const PointResult r = invert_point(plan, k.p0);
   EXPECT_EQ(r.status, Status::ok) << to_string(r.status) << " " << r.reason;
   // The nearest point P(t*) is at most dist from P0, hence at most 2 dist from P(t_exact):
@@ -286,7 +286,7 @@ void check_refined(const RefinedCase& k) {
   const double t_exact = k.t_exact.get_d();
   EXPECT_LE(std::abs(r.t - t_exact), 2.5 * dist / speed) << r.t;
   // Refinement finds the nearest point: no farther than P(t_exact), up to the rounding of P(t).
-  EXPECT_LE(r.residual, dist + 1e-14 * plan.diagonal);
+  EXPECT_LE(r.residual, dist + 1e-14 * plan.diagonal());
   // And it is a stationary point of the distance, (P(t) - P0) . P'(t) = 0, up to the rounding of
   // P(t) (~eps x the curve's size): Newton runs to full precision. Measured cos(angle) 1.7e-10,
   // 5.4e-8 (Example 3, residual ~3.6e-8, where the rounding of P(t) dominates), 3.0e-10.
@@ -294,7 +294,7 @@ void check_refined(const RefinedCase& k) {
   const auto pt = k.exact_curve.point(t), dp = k.exact_curve.tangent(t);
   const double dot = mpq_class((pt[0] - k.p0_exact[0]) * dp[0] + (pt[1] - k.p0_exact[1]) * dp[1]).get_d();
   const double dpn = std::hypot(dp[0].get_d(), dp[1].get_d());
-  EXPECT_LE(std::abs(dot), (1e-8 * r.residual + 1e-14 * plan.diagonal) * dpn) << "(P(t) - P0) . P'(t)";
+  EXPECT_LE(std::abs(dot), (1e-8 * r.residual + 1e-14 * plan.diagonal()) * dpn) << "(P(t) - P0) . P'(t)";
   ::testing::Test::RecordProperty(std::string(k.name) + "_cos_angle", sci(std::abs(dot) / (r.residual * dpn)));
   ::testing::Test::RecordProperty(std::string(k.name) + "_t_error", sci(std::abs(r.t - t_exact)));
   ::testing::Test::RecordProperty(std::string(k.name) + "_t_bound", sci(2.5 * dist / speed));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bezinv/datasets/random_curve.hpp"
+#include "plan_data.hpp"
 #include "bezinv/plan.hpp"
 
 namespace bezinv {
@@ -37,15 +38,15 @@ TEST(MakePlans, TheSamePlansAsOneAtATimeInOrder) {
     ASSERT_EQ(plans.size(), curves.size());
     for (std::size_t i = 0; i < curves.size(); ++i) {
       SCOPED_TRACE(testing::Message() << "threads " << threads << ", curve " << i);
-      const InversionPlan one = make_plan(curves[i]);
-      EXPECT_EQ(plans[i].curve.id, curves[i].id);
-      EXPECT_EQ(plans[i].degree, one.degree);
-      EXPECT_EQ(plans[i].isolation_pieces, one.isolation_pieces);
-      EXPECT_TRUE(same_bits(plans[i].B0, one.B0));
-      EXPECT_TRUE(same_bits(plans[i].By, one.By));
-      EXPECT_TRUE(same_bits(plans[i].isolation_boxes, one.isolation_boxes));
-      EXPECT_TRUE(same_bits(plans[i].isolation_far, one.isolation_far));
-      EXPECT_TRUE(same_bits(plans[i].isolation_unique, one.isolation_unique));
+      const detail::PlanData one = detail::plan_data(make_plan(curves[i]));
+      EXPECT_EQ(plans[i].curve().id, curves[i].id);
+      EXPECT_EQ(plans[i].degree(), one.degree);
+      EXPECT_EQ(bezinv::detail::plan_data(plans[i]).isolation_pieces, one.isolation_pieces);
+      EXPECT_TRUE(same_bits(bezinv::detail::plan_data(plans[i]).B0, one.B0));
+      EXPECT_TRUE(same_bits(bezinv::detail::plan_data(plans[i]).By, one.By));
+      EXPECT_TRUE(same_bits(bezinv::detail::plan_data(plans[i]).isolation_boxes, one.isolation_boxes));
+      EXPECT_TRUE(same_bits(bezinv::detail::plan_data(plans[i]).isolation_far, one.isolation_far));
+      EXPECT_TRUE(same_bits(bezinv::detail::plan_data(plans[i]).isolation_unique, one.isolation_unique));
     }
   }
   EXPECT_TRUE(make_plans({}, 2).empty());

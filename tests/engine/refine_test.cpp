@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bezinv/kernels/batch.hpp"
+#include "plan_data.hpp"
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
 #include "support/random_plan.hpp"
@@ -32,7 +33,7 @@ TEST(Refine, KernelGivesTheScalarRefinementsBits) {
     for (int n = 1; n <= 24; ++n)
       for (bool common : {true, false}) {
         // refine_parameter reads only the degree and the four polynomials
-        const InversionPlan plan = test_support::random_polynomials_plan(n, common, rng);
+        const detail::PlanData plan = test_support::random_polynomials_plan(n, common, rng);
         std::vector<double> u, v, t, distance;
         for (int k = 0; k < 37; ++k) {
           const double t_true = unit(rng);

@@ -20,6 +20,7 @@
 
 #include "bezinv/curve.hpp"
 #include "bezinv/io.hpp"
+#include "io/read_points_csv.hpp"
 #include "io/quote.hpp"
 #include "io/whole_file.hpp"
 #include "support/scratch_directory.hpp"
@@ -242,10 +243,10 @@ class CsvHostile : public ::testing::Test {
     return list;
   }();
 
-  std::vector<PointRow> read(std::string_view csv) { return read_points_csv(scratch.write("points.csv", csv), curves); }
+  std::vector<PointRow> read(std::string_view csv) { return detail::read_points_csv(scratch.write("points.csv", csv), curves); }
   void expect_refused(std::string_view csv, std::initializer_list<std::string> fragments) {
     const std::string path = scratch.write("points.csv", csv);
-    expect_clean_error([&] { read_points_csv(path, curves); }, path, fragments);
+    expect_clean_error([&] { detail::read_points_csv(path, curves); }, path, fragments);
   }
 };
 
@@ -265,7 +266,7 @@ TEST_F(CsvHostile, RefusesALineLongerThanTheLimitNamingIt) {
 }
 
 TEST_F(CsvHostile, StopsReadingDevZeroAtTheFirstLine) {
-  expect_clean_error([&] { read_points_csv("/dev/zero", curves); }, "/dev/zero", {"/dev/zero:1:", "line longer than"});
+  expect_clean_error([&] { detail::read_points_csv("/dev/zero", curves); }, "/dev/zero", {"/dev/zero:1:", "line longer than"});
 }
 
 TEST_F(CsvHostile, EscapesAndCutsTheLinesItQuotes) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "bezinv/io.hpp"
+#include "io/read_points_csv.hpp"
 #include "support/expect_input_error.hpp"
 #include "support/scratch_directory.hpp"
 #include "support/split.hpp"
@@ -211,12 +212,12 @@ class IoPointsCsv : public ::testing::Test {
   const std::vector<Curve> curves = three_curves();
 
   std::vector<PointRow> read(std::string_view csv) {
-    return read_points_csv(scratch.write("points.csv", csv), curves);
+    return detail::read_points_csv(scratch.write("points.csv", csv), curves);
   }
   void expect_refused(std::string_view csv, std::initializer_list<std::string> fragments) {
     const std::string path = scratch.write("points.csv", csv);
-    expect_input_error([&] { read_points_csv(path, curves); }, fragments);
-    expect_input_error([&] { read_points_csv(path, curves); }, {path});
+    expect_input_error([&] { detail::read_points_csv(path, curves); }, fragments);
+    expect_input_error([&] { detail::read_points_csv(path, curves); }, {path});
   }
 };
 
@@ -343,10 +344,10 @@ TEST_F(IoPointsCsv, QuotedCommasAndDoubledQuotesStayInTheirField) {
 
 TEST_F(IoPointsCsv, RefusesUnreadableOrEmptyFiles) {
   const std::string missing = scratch.path("no-such.csv");
-  expect_input_error([&] { read_points_csv(missing, curves); }, {missing, "cannot read"});
+  expect_input_error([&] { detail::read_points_csv(missing, curves); }, {missing, "cannot read"});
   // A directory: its reported size is not a file size (this once ended in std::bad_alloc).
   const std::string directory = scratch.root().string();
-  expect_input_error([&] { read_points_csv(directory, curves); }, {directory, "cannot read"});
+  expect_input_error([&] { detail::read_points_csv(directory, curves); }, {directory, "cannot read"});
   expect_refused("", {":1:", "empty"});
   expect_refused("\xEF\xBB\xBF", {":1:", "empty"});
   expect_refused("\n\n", {":1:", "empty"});

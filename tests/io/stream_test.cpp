@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bezinv/io.hpp"
+#include "plan_data.hpp"
 #include "bezinv/plan.hpp"
 #include "support/scratch_directory.hpp"
 
@@ -73,10 +74,10 @@ TEST(MakePlansOfIndices, BuildsTheNamedPlansAndLeavesTheOthers) {
   make_plans(curves, indices, plans, 2);
   for (std::size_t i = 0; i < curves.size(); ++i) {
     const bool named = std::find(indices.begin(), indices.end(), i) != indices.end();
-    EXPECT_EQ(plans[i].degree, named ? 7 : 0) << i;
+    EXPECT_EQ(plans[i].degree(), named ? 7 : 0) << i;
     if (named) {
-      EXPECT_EQ(plans[i].curve.id, curves[i].id);
-      EXPECT_EQ(plans[i].B0, make_plan(curves[i]).B0) << i;
+      EXPECT_EQ(plans[i].curve().id, curves[i].id);
+      EXPECT_EQ(bezinv::detail::plan_data(plans[i]).B0, bezinv::detail::plan_data(make_plan(curves[i])).B0) << i;
     }
   }
 }

@@ -1,16 +1,16 @@
 #pragma once
-// A bare InversionPlan for the tests of engine-internal pieces that read only the degree and the
+// A bare plan's data for the tests of engine-internal pieces that read only the degree and the
 // four polynomials (refine.cpp, degree_drop.cpp): no make_plan, so no normalization in the way.
 #include <random>
 
-#include "bezinv/plan.hpp"
+#include "plan_data.hpp"
 
 namespace bezinv::test_support {
 
 // Degree n; weights uniform in [0.5, 2] (one W for x and y when `common`), numerators w * [-1, 1].
-inline InversionPlan random_polynomials_plan(int n, bool common, std::mt19937_64& rng) {
+inline detail::PlanData random_polynomials_plan(int n, bool common, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0), weight(0.5, 2.0);
-  InversionPlan plan;
+  detail::PlanData plan;
   plan.degree = n;
   for (int i = 0; i <= n; ++i) {
     const double w = weight(rng), w2 = common ? w : weight(rng);

@@ -65,19 +65,10 @@ std::string_view active_kernel_name();
 // One point (the reference path: everything else must agree with it).
 PointResult invert_point(const InversionPlan& plan, Point point, const InvertOptions& options = {});
 
-// Seconds of work spent in each stage of the pipeline, summed over threads (`bezinv profile`).
-struct StageSeconds {
-  double form_b = 0;    // normalize the points, form B from the plan's matrices (below degree 8)
-  double kernel = 0;    // singular values and vectors of B (from degree 8 forming B too: the seed's)
-  double read_out = 0;  // algebraic t from the null vector
-  double refine = 0;    // Newton to full precision, and the residual
-  double decide = 0;    // status, and the rare paths (double point, Sylvester, nearest point)
-};
-
 // Many points of one curve, in parallel; results[i] answers points[i]. The answers do not depend
-// on the thread count. `stages`, when given, accumulates the time of each stage.
+// on the thread count. (bezinv/profile.hpp has the same with the time of each stage.)
 void invert(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
-            const InvertOptions& options = {}, StageSeconds* stages = nullptr);
+            const InvertOptions& options = {});
 
 // Many points of many curves: curve_of[i] indexes plans, or is negative for a point the I/O layer
 // already rejected (then results[i] is left as the caller set it).

@@ -47,11 +47,6 @@ struct PointRow {
   const char* reason = "";
 };
 
-// The whole of POINTS.csv at once (small files, tests): open_points read to the end.
-// Throws InputError for a file that cannot be used as a whole (unreadable, missing or wrong
-// header, a row with the wrong number of fields); per-row problems become rows with curve = -1.
-std::vector<PointRow> read_points_csv(const std::string& path, const std::vector<Curve>& curves);
-
 // Where the points of a .npy file find their curve (a CSV names it in its `curve` column, and
 // giving either of these with a CSV is an InputError). Exactly one must be set for .npy points.
 struct CurveSelection {

@@ -12,14 +12,6 @@ namespace bezinv {
 // z.size() >= 2. Returns NaN when the two components are both zero.
 double parameter_from_null_vector(std::span<const double> z);
 
-// Index i (1 <= i <= size-1) of the pair (z_{i-1}, z_i) that parameter_from_null_vector uses.
-int null_vector_pair(std::span<const double> z);
-
-// How far z is from the Bernstein form: the sine of the angle between z and the basis vector
-// beta^{(N)}(t). Near 0 when z really is a (scaled) basis vector; a random mix of two basis
-// vectors (nullity 2) gives an O(1) value. Scale-invariant.
-double bernstein_form_defect(std::span<const double> z, double t);
-
 // Two-dimensional null space spanned by u and v (same size N+1 >= 3): find the parameters t with
 // beta^{(N)}(t) in span{u, v}. Each column c = a u + b v must satisfy, for i = 1..N,
 //     i (1-t) c_i - (N+1-i) t c_{i-1} = 0,

@@ -1,104 +1,56 @@
 #pragma once
 // The per-curve precomputation ("plan"). Everything that does not depend on the point is done once
-// here, so that inverting a point costs: form B from four fixed matrices, one symmetric SVD, a read-out.
-//
-// For a point (x0, y0), with p = X_num - x0 X_den and q = Y_num - y0 Y_den, bilinearity and
-// antisymmetry of the Bezoutian give
-//     B(x0, y0) = Bez(X_num, Y_num) - x0 Bez(X_den, Y_num) - y0 Bez(X_num, Y_den) + x0 y0 Bez(X_den, Y_den)
-//               =        B0         - x0        Bx          - y0        By          + x0 y0     Bxy,
-// with Bxy = Bez(W, W) = 0 when the denominators are one W (rational Bezier), so B is affine there.
-#include <array>
+// per curve, so that inverting a point costs: form the Bezout matrix B from four fixed matrices,
+// find its null vector, read the parameter out, refine it. What a plan holds (the curve
+// normalized, at its effective degree, B's coefficient matrices, the isolation certificate) is
+// the engine's; docs/README.md walks through it.
 #include <cstddef>
+#include <memory>
 #include <span>
-#include <string>
 #include <vector>
 
 #include "bezinv/curve.hpp"
 
 namespace bezinv {
 
-struct InversionPlan {
-  Curve curve;          // as given (validated)
-  int input_degree = 0; // degree as given
-  int degree = 0;       // effective degree n after exact reduction of a degree-elevated curve
+class InversionPlan;
+namespace detail {
+struct PlanData;
+const PlanData& plan_data(const InversionPlan& plan);
+}  // namespace detail
 
-  // Normalization: u = R (P - centre) / scale, with R a rotation (identity for separate
-  // denominators, which a rotation would mix); each numerator/denominator pair is also divided by
-  // its largest denominator coefficient. Translation and rotation leave B unchanged in exact
-  // arithmetic (Bez is alternating: a unimodular change of (p, q) multiplies it by det = 1); the
-  // scale and the denominator division multiply it by 1/(scale^2 max|x_den| max|y_den|). So the
-  // null vectors, the singular-value ratios and the algebraic parameter are the same; in floating point the
-  // affine combination below no longer cancels digits for curves far from the origin, and a line
-  // parallel to an axis no longer makes p identically zero.
-  // scale is the power of two in [diagonal, 2 diagonal) (1 for a curve of one point), so scaling
-  // adds no rounding, and dividing by it is multiplying by inverse_scale: the engine normalizes
-  // every point with a multiplication (perf at degree 3: normalizing took 2.2% of the pipeline
-  // with the division, 1.5% without).
-  std::array<double, 2> centre{0.0, 0.0};
-  double scale = 1.0, inverse_scale = 1.0;
-  double cos_rotation = 1.0, sin_rotation = 0.0;
+// Immutable once made (copies share it), so one plan may be used from many threads.
+class InversionPlan {
+ public:
+  // An empty plan (no curve: usable() is false); make_plan makes real ones.
+  InversionPlan();
 
-  // The normalized curve at the effective degree (n+1 coefficients each).
-  std::vector<double> x_num, x_den, y_num, y_den;
-  bool common_denominator = true;
-
-  // B(u0, v0) = B0 - u0 Bx - v0 By + u0 v0 Bxy in normalized coordinates (n x n, row-major).
-  std::vector<double> B0, Bx, By, Bxy;
-  // The curve lies on a straight line (within kVanishingBezoutRatio of its size): B vanishes at
-  // every point of it, and its points are inverted from the roots of p (engine/src/invert.cpp).
-  bool straight_line = false;
-  // max |entry| of B0, Bx, By, Bxy: a bound of B's terms before they cancel, for any point.
-  std::array<double, 4> bezout_max_entries{0.0, 0.0, 0.0, 0.0};
-
-  // The nearest-point search's samples of the normalized curve, P(k / S) for k = 0..S as
-  // (x, y) pairs (engine/src/refine.hpp): computed once here instead of for every off-curve point.
-  std::vector<double> nearest_samples;
-
-  // Isolation certificate (engine/src/isolation.hpp), for K = isolation_pieces pieces of [0, 1]: a
-  // box holding each piece of the curve (K x centres, K x half-widths, then the same for y; the
-  // whole plane where a weight is not positive), the distance from each box to the nearest box not
-  // next to it, and per piece a bound that makes the curve monotone around it and the distance
-  // from the curve below which a point has one nearest parameter there (0: none). Empty for
-  // degree < 2.
-  int isolation_pieces = 0;
-  std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique;
-
-  // Power-basis leading coefficients of the four polynomials and their size bounds, for
-  // detecting a degree drop of p and q at a given point (paper Sect. 4).
-  double lead_x_num = 0, lead_x_den = 0, lead_y_num = 0, lead_y_den = 0;
-
-  // Diagonal of the bounding box of the control points (input units): tolerances are relative to
-  // it (inf for a box wider than the largest double; normalized_diagonal is finite).
-  double diagonal = 0.0;
-  double normalized_diagonal = 0.0;  // diagonal / scale
-  // The floor of the on-curve tolerance, normalized units: kResolutionUlps ulps of the largest
-  // coordinate of the box, so a point rounded to doubles from the curve counts as on it however
-  // far from the origin the curve sits.
-  double normalized_resolution = 0.0;
-
+  const Curve& curve() const;  // as given (validated)
+  int input_degree() const;    // the degree as given
+  // The effective degree n: after an exact common factor and a degree elevation are taken out
+  // (the size of B is n x n).
+  int degree() const;
+  // Diagonal of the bounding box of the control points (input units): the on-curve tolerance is
+  // relative to it (inf for a box wider than the largest double).
+  double diagonal() const;
   // False when no point of the curve can be given one parameter (all its points coincide); every
-  // point of it is then reported `failed` with `reason`.
-  bool usable = true;
-  const char* reason = "";  // static text
+  // point of it is then reported `failed` with reason(), a static text.
+  bool usable() const;
+  const char* reason() const;
 
-  // Input coordinates -> normalized (inline: the engine normalizes whole batches in one loop).
-  std::array<double, 2> normalize(double x, double y) const {
-    // Scaled before the difference (by a power of two: the same bits as scaling after it), so a
-    // point near the largest double on the far side of the centre does not overflow.
-    const double dx = x * inverse_scale - centre[0] * inverse_scale, dy = y * inverse_scale - centre[1] * inverse_scale;
-    return {cos_rotation * dx - sin_rotation * dy, sin_rotation * dx + cos_rotation * dy};
-  }
-  // P(t) in normalized coordinates.
-  std::array<double, 2> normalized_point(double t) const;
+ private:
+  friend InversionPlan make_plan(const Curve& curve);
+  friend const detail::PlanData& detail::plan_data(const InversionPlan& plan);
+  explicit InversionPlan(std::shared_ptr<const detail::PlanData> data);
+  std::shared_ptr<const detail::PlanData> data_;
 };
 
 // Builds the plan. Throws CurveError for a curve that fails validate().
 InversionPlan make_plan(const Curve& curve);
 
 // The plans of many curves, built in parallel (threads as InvertOptions::threads: 0 = all cores):
-// a plan costs 25 us at degree 3 to over a millisecond at degree 20, so for a file of many curves
-// of few points each the plans, not the points, set the time. The same plans make_plan gives,
-// in order. If curves fail validate(), throws PlansError for the first of them.
+// for a file of many curves of few points each the plans, not the points, set the time. The same
+// plans make_plan gives, in order. If curves fail validate(), throws PlansError for the first of them.
 std::vector<InversionPlan> make_plans(std::span<const Curve> curves, int threads = 0);
 
 // The plans of curves[i] for each i in `indices` only, into plans[i] (plans.size() ==
@@ -112,8 +64,5 @@ class PlansError : public CurveError {
   PlansError(std::size_t index, const CurveError& error) : CurveError(error), index(index) {}
   std::size_t index;  // the curve's position in `curves`; what() is its CurveError's
 };
-
-// B(u0, v0) from the plan's matrices, for a point already in normalized coordinates.
-void bezout_at(const InversionPlan& plan, double u0, double v0, std::span<double> out);
 
 }  // namespace bezinv

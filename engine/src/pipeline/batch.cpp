@@ -14,7 +14,7 @@ namespace bezinv::detail {
 namespace {
 
 // One batch through the stages, but for the lanes left waiting in this thread's queues.
-void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+void invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                         const InvertOptions& options, StageSeconds* stages) {
   BatchWorkspace& w = batch_workspace();
   const int n = plan.degree, nn = n * n;
@@ -64,7 +64,7 @@ void invert_batch_lanes(const InversionPlan& plan, const Point* points, PointRes
 // One batch, with this thread's pair-check queue around it: flushed first if the batch's lanes
 // might not fit in it, and after once enough roots wait to fill a SIMD group (both outside
 // invert_batch_lanes, whose workspace the SVD path also uses).
-void invert_batch(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+void invert_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                   const InvertOptions& options, StageSeconds* stages) {
   PairCheckQueue& pairs = pair_check_queue();
   if (pairs.lanes + count > kPairCheckLanes) flush_pair_check_queue(plan, options, stages);
@@ -76,7 +76,7 @@ void invert_batch(const InversionPlan& plan, const Point* points, PointResult* r
 }
 
 
-void flush_queues(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages) {
+void flush_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages) {
   flush_pair_check_queue(plan, options, stages);
   flush_svd_queue(plan, options, stages);
 }

@@ -9,20 +9,20 @@
 // so there is one code path.
 #include <cstddef>
 
-#include "bezinv/invert.hpp"
-#include "bezinv/plan.hpp"
+#include "bezinv/profile.hpp"
+#include "plan_data.hpp"
 
 namespace bezinv::detail {
 
 // One batch (count <= kBatchLanes), with this thread's queues around it: some lanes may be left
 // waiting in them (flush_queues answers them).
-void invert_batch(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+void invert_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                   const InvertOptions& options, StageSeconds* stages);
 
 // Answers every lane waiting in this thread's queues: the pair check first (it may hand lanes to
 // the SVD path), then the SVD queue. Called at the end of each range of batches, so a queue never
 // outlives the plan it was filled for.
-void flush_queues(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages);
+void flush_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages);
 
 // Empties this thread's queues when it goes out of scope: after the last flush they are empty
 // anyway; if an exception (bad_alloc) cut the work short, the waiting lanes point into the

@@ -6,7 +6,7 @@
 
 namespace bezinv::detail {
 
-Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algebraic, Path path,
+Candidate settle(const PlanData& plan, double u0, double v0, double t_algebraic, Path path,
                  double tolerance, bool refine) {
   Candidate c;
   c.path = path;

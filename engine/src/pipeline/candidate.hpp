@@ -4,13 +4,13 @@
 #include <algorithm>
 
 #include "bezinv/invert.hpp"
-#include "bezinv/plan.hpp"
+#include "plan_data.hpp"
 
 namespace bezinv::detail {
 
 // The tolerance on |P(t) - P0| in normalized units: relative to the curve's size, never below the
 // resolution of its coordinates.
-inline double normalized_tolerance(const InversionPlan& plan, const InvertOptions& options) {
+inline double normalized_tolerance(const PlanData& plan, const InvertOptions& options) {
   return std::max(options.relative_tolerance * plan.normalized_diagonal, plan.normalized_resolution);
 }
 
@@ -28,7 +28,7 @@ inline void classify(Candidate& c, double tolerance) {
 }
 
 // From an algebraic parameter to a verified one: refine (or not), then measure.
-Candidate settle(const InversionPlan& plan, double u0, double v0, double t_algebraic, Path path,
+Candidate settle(const PlanData& plan, double u0, double v0, double t_algebraic, Path path,
                  double tolerance, bool refine);
 
 }  // namespace bezinv::detail

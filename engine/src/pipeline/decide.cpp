@@ -28,7 +28,7 @@ int numerical_nullity(const double* sigma, int n) {
 }
 
 // max_ij |B0| + |u0 Bx| + |v0 By| + |u0 v0 Bxy|: the size of B's terms before they cancel.
-double bezout_term_size(const InversionPlan& plan, double u0, double v0) {
+double bezout_term_size(const PlanData& plan, double u0, double v0) {
   double size = 0.0;
   const int nn = plan.degree * plan.degree;
   for (int i = 0; i < nn; ++i)
@@ -40,7 +40,7 @@ double bezout_term_size(const InversionPlan& plan, double u0, double v0) {
 // Whether B(u0, v0), whose largest singular value is sigma_1, vanishes (kVanishingBezoutRatio):
 // decided first against a bound of the terms' size from the plan's largest entries, which settles
 // every point of a curve that is not a line without a pass over B.
-bool bezout_vanishes(const InversionPlan& plan, double u0, double v0, double sigma_1) {
+bool bezout_vanishes(const PlanData& plan, double u0, double v0, double sigma_1) {
   const auto& m = plan.bezout_max_entries;
   const double bound = m[0] + std::abs(u0) * m[1] + std::abs(v0) * m[2] + std::abs(u0 * v0) * m[3];
   if (sigma_1 > kVanishingBezoutRatio * bound) return false;
@@ -69,7 +69,7 @@ int bernstein_roots(std::span<const double> r, std::span<double> t) {
 // Whether P0 is reached at t1 and t2 by separate branches of the curve: somewhere between them
 // the curve leaves the tolerance of P0 (sampled at kBranchSamples interior parameters; a branch
 // that passes slowly, or a cusp within the tolerance, stays inside).
-bool separate_branches(const InversionPlan& plan, double u0, double v0, double t1, double t2, double tolerance) {
+bool separate_branches(const PlanData& plan, double u0, double v0, double t1, double t2, double tolerance) {
   for (int k = 1; k <= kBranchSamples; ++k) {
     const double t = t1 + (t2 - t1) * k / (kBranchSamples + 1);
     if (!(detail::distance(plan, u0, v0, t) <= tolerance)) return true;
@@ -83,7 +83,7 @@ bool separate_branches(const InversionPlan& plan, double u0, double v0, double t
 // covered by the certificate; one outside is walked along the extension, as settle() does.
 // Refused (the SVD path decides) when there are not two real roots or a root is near an end
 // (docs/fast-path.md, "Off the curve").
-bool extension_roots_clear(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, double tolerance) {
+bool extension_roots_clear(const PlanData& plan, const BatchWorkspace& w, std::size_t l, double tolerance) {
   double roots[2];
   if (null_space_roots(plan.degree, w, l, roots) != 2) return false;
   for (double root : roots) {
@@ -95,14 +95,14 @@ bool extension_roots_clear(const InversionPlan& plan, const BatchWorkspace& w, s
 }
 
 // What needs the kernel's gap for an off-curve lane (off_curve_nearest is what the geometry says).
-bool off_curve_alone(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, double tolerance) {
+bool off_curve_alone(const PlanData& plan, const BatchWorkspace& w, std::size_t l, double tolerance) {
   return plan.degree < 3 || w.estimate[kBatchLanes + l] >= kFastPathGapRatio ||
          extension_roots_clear(plan, w, l, tolerance);
 }
 
 }  // namespace
 
-bool admit(const InversionPlan& plan, const Point& point, double u, double v, PointResult& r) {
+bool admit(const PlanData& plan, const Point& point, double u, double v, PointResult& r) {
   r = PointResult{};
   if (!std::isfinite(point.x) || !std::isfinite(point.y)) {
     r.status = Status::invalid_input;
@@ -121,7 +121,7 @@ bool admit(const InversionPlan& plan, const Point& point, double u, double v, Po
   return true;
 }
 
-void answer_fast(const InversionPlan& plan, double t, double distance, double sigma_min, double sigma_next,
+void answer_fast(const PlanData& plan, double t, double distance, double sigma_min, double sigma_next,
                  PointResult& r, Status status) {
   r.t = t;
   r.residual = distance * plan.scale;
@@ -133,7 +133,7 @@ void answer_fast(const InversionPlan& plan, double t, double distance, double si
 
 // Stationary: cos(P(t) - P0, P'(t)) <= kStationaryCosine, so the search's stationary point is
 // within ~1e-13 of t (docs/fast-path.md, "Off the curve").
-bool off_curve_nearest(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, const Candidate& c) {
+bool off_curve_nearest(const PlanData& plan, const BatchWorkspace& w, std::size_t l, const Candidate& c) {
   if (c.on_curve || !(c.t > 0.0 && c.t < 1.0) || !std::isfinite(c.distance)) return false;
   if (!detail::nearest_on_segment(plan, w.u[l], w.v[l], c.t, c.distance)) return false;
   const detail::CurveJet jet = detail::curve_jet(plan, c.t);
@@ -141,7 +141,7 @@ bool off_curve_nearest(const InversionPlan& plan, const BatchWorkspace& w, std::
   return std::abs(along) <= kStationaryCosine * c.distance * std::hypot(jet.dx, jet.dy);
 }
 
-void decide_with_gap(const InversionPlan& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
+void decide_with_gap(const PlanData& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
                      double tolerance, bool asked, PointResult& result) {
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
@@ -161,7 +161,7 @@ void decide_with_gap(const InversionPlan& plan, BatchWorkspace& w, std::size_t l
     answer_fast(plan, c.t, c.distance, w.estimate[l], w.estimate[stride + l], result);
 }
 
-void decide(const InversionPlan& plan, double u0, double v0, const Candidate& main, const double* sigma,
+void decide(const PlanData& plan, double u0, double v0, const Candidate& main, const double* sigma,
             const double* V, const InvertOptions& options, PointResult& r) {
   const int n = plan.degree;
   const double tolerance = normalized_tolerance(plan, options);

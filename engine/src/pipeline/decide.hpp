@@ -12,7 +12,7 @@
 #include <cstddef>
 
 #include "bezinv/invert.hpp"
-#include "bezinv/plan.hpp"
+#include "plan_data.hpp"
 #include "pipeline/candidate.hpp"
 #include "pipeline/workspace.hpp"
 
@@ -20,28 +20,28 @@ namespace bezinv::detail {
 
 // Stage 1 for one point, (u, v) its normalized coordinates: true when the point goes on through
 // the pipeline; otherwise r holds its answer.
-bool admit(const InversionPlan& plan, const Point& point, double u, double v, PointResult& r);
+bool admit(const PlanData& plan, const Point& point, double u, double v, PointResult& r);
 
 // The fast path's answer: status ok (or off_curve), path bezout_lu, the sigma columns from the
 // kernel's estimates.
-void answer_fast(const InversionPlan& plan, double t, double distance, double sigma_min, double sigma_next,
+void answer_fast(const PlanData& plan, double t, double distance, double sigma_min, double sigma_next,
                  PointResult& r, Status status = Status::ok);
 
 // Whether the fast path may answer lane l (refined to c, off the curve) off_curve from the curve's
 // geometry: its refinement ended inside (0, 1) at a stationary point of the distance that the
 // isolation certificate proves the nearest point of the segment.
-bool off_curve_nearest(const InversionPlan& plan, const BatchWorkspace& w, std::size_t l, const Candidate& c);
+bool off_curve_nearest(const PlanData& plan, const BatchWorkspace& w, std::size_t l, const Candidate& c);
 
 // The fast path's decision for lane l, refined to c, with the kernel's gap: answered here (ok, or
 // off_curve), after the second-parameter check, or left to the SVD path (still active). `asked`:
 // the curve's geometry was asked already (the gap pass): on the segment the isolation certificate
 // refused the lane, off it off_curve_nearest held.
-void decide_with_gap(const InversionPlan& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
+void decide_with_gap(const PlanData& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
                      double tolerance, bool asked, PointResult& result);
 
 // The SVD path's decision for one point: `main` is the refined candidate from the null vector;
 // sigma (n values, decreasing) and V (singular vector k at V[k n + r]) are the point's SVD of B.
-void decide(const InversionPlan& plan, double u0, double v0, const Candidate& main, const double* sigma,
+void decide(const PlanData& plan, double u0, double v0, const Candidate& main, const double* sigma,
             const double* V, const InvertOptions& options, PointResult& r);
 
 }  // namespace bezinv::detail

@@ -7,7 +7,7 @@
 
 namespace bezinv::detail {
 
-void answer_far_point(const InversionPlan& plan, const Point& point, PointResult& r) {
+void answer_far_point(const PlanData& plan, const Point& point, PointResult& r) {
   // The direction from the centre, in coordinates scaled by a power of two so nothing overflows.
   const int e = std::max(std::ilogb(std::max(std::abs(point.x), std::abs(point.y))),
                          std::ilogb(std::max({std::abs(plan.centre[0]), std::abs(plan.centre[1]), 1.0})));

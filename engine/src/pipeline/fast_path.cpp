@@ -17,7 +17,7 @@ namespace {
 
 // Pass 2, the gap pass: the full kernel for the `waiting` lanes w.gap_lane_of[0..waiting), compacted,
 // its results put back in their lanes, then decide_with_gap with the refined point they kept.
-void gap_pass(const InversionPlan& plan, std::size_t waiting, double tolerance, BatchWorkspace& w,
+void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, BatchWorkspace& w,
               PointResult* results, StageClock& clock) {
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
@@ -49,7 +49,7 @@ void gap_pass(const InversionPlan& plan, std::size_t waiting, double tolerance, 
 
 }  // namespace
 
-void fast_path(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+void fast_path(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                const InvertOptions& options, BatchWorkspace& w, StageClock& clock) {
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;

@@ -12,7 +12,7 @@
 #include <cstddef>
 
 #include "bezinv/invert.hpp"
-#include "bezinv/plan.hpp"
+#include "plan_data.hpp"
 #include "pipeline/stage_clock.hpp"
 #include "pipeline/workspace.hpp"
 
@@ -25,18 +25,18 @@ inline constexpr int kFormedBMinDegree = 8;
 
 // Whether a batch of this plan takes the fast path. Not on a straight line: B vanishes at its
 // points, and the kernel's estimates, relative to ||B||, would read rounding as evidence.
-inline bool takes_fast_path(const InversionPlan& plan, const InvertOptions& options) {
+inline bool takes_fast_path(const PlanData& plan, const InvertOptions& options) {
   return options.fast_path && options.refine && plan.degree >= 2 && plan.degree <= kFastPathMaxDegree &&
          !plan.straight_line;
 }
 
 // Whether the fast path forms B itself (the batch's w.B is then not formed in stage 1).
-inline bool forms_b_in_seed(const InversionPlan& plan, const InvertOptions& options) {
+inline bool forms_b_in_seed(const PlanData& plan, const InvertOptions& options) {
   return takes_fast_path(plan, options) && plan.degree >= kFormedBMinDegree;
 }
 
 // Stages 2-4 (and the decisions they allow) for the batch's active lanes.
-void fast_path(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count,
+void fast_path(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                const InvertOptions& options, BatchWorkspace& w, StageClock& clock);
 
 }  // namespace bezinv::detail

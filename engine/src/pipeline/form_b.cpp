@@ -9,7 +9,7 @@
 
 namespace bezinv::detail {
 
-void form_batch(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count, bool form,
+void form_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count, bool form,
                 BatchWorkspace& w) {
   const int n = plan.degree, nn = n * n;
   const std::size_t stride = kBatchLanes;
@@ -36,7 +36,7 @@ void form_batch(const InversionPlan& plan, const Point* points, PointResult* res
   }
 }
 
-void mark_overflowing_b(const InversionPlan& plan, const Point* points, const double* poison, std::size_t count,
+void mark_overflowing_b(const PlanData& plan, const Point* points, const double* poison, std::size_t count,
                         BatchWorkspace& w, PointResult* results) {
   for (std::size_t l = 0; l < count; ++l)
     if (w.active[l] && !(poison[l] == 0.0)) {
@@ -45,7 +45,7 @@ void mark_overflowing_b(const InversionPlan& plan, const Point* points, const do
     }
 }
 
-void form_compacted_b(const InversionPlan& plan, const double* u, const double* v, std::size_t m, double* B) {
+void form_compacted_b(const PlanData& plan, const double* u, const double* v, std::size_t m, double* B) {
   std::array<double, kBatchLanes> poison;
   kernels::active_implementation().bezout_matrix(plan.degree, m, kBatchLanes, plan.B0.data(), plan.Bx.data(),
                                                  plan.By.data(), bilinear_coefficients(plan), u, v, B, poison.data());

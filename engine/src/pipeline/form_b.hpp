@@ -4,7 +4,7 @@
 #include <cstddef>
 
 #include "bezinv/invert.hpp"
-#include "bezinv/plan.hpp"
+#include "plan_data.hpp"
 #include "pipeline/workspace.hpp"
 
 namespace bezinv::detail {
@@ -12,23 +12,23 @@ namespace bezinv::detail {
 // Normalizes and admits the batch's points into w (u, v, active); with `form`, also forms every
 // active lane's B into w.B (lower triangle; an inactive lane gets the identity, so the kernels see
 // only finite, harmless matrices). A lane whose B overflows is answered by answer_far_point.
-void form_batch(const InversionPlan& plan, const Point* points, PointResult* results, std::size_t count, bool form,
+void form_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count, bool form,
                 BatchWorkspace& w);
 
 // A lane whose Bezout matrix overflowed (poison[l] not 0: an entry is not finite) is a point too
 // far to form B for: answered off_curve by answer_far_point, it leaves the pipeline.
-void mark_overflowing_b(const InversionPlan& plan, const Point* points, const double* poison, std::size_t count,
+void mark_overflowing_b(const PlanData& plan, const Point* points, const double* poison, std::size_t count,
                         BatchWorkspace& w, PointResult* results);
 
 // The kernels' Bxy: null for one denominator, where Bxy = Bez(W, W) = 0 and B is affine in (u, v),
 // so that they skip the term and give bezout_at's bits, which skips it too.
-inline const double* bilinear_coefficients(const InversionPlan& plan) {
+inline const double* bilinear_coefficients(const PlanData& plan) {
   return plan.common_denominator ? nullptr : plan.Bxy.data();
 }
 
 // B of the points (u[k], v[k]), k < m, into lanes 0..m-1 of B (stride kBatchLanes), as stage 1
 // forms it, for lanes gathered from a batch (the gap pass, the SVD path, the pair check); their
 // B did not overflow (such a lane left the pipeline when its B was first formed).
-void form_compacted_b(const InversionPlan& plan, const double* u, const double* v, std::size_t m, double* B);
+void form_compacted_b(const PlanData& plan, const double* u, const double* v, std::size_t m, double* B);
 
 }  // namespace bezinv::detail

@@ -65,7 +65,7 @@ bool queue_second_parameters(int n, const BatchWorkspace& w, std::size_t l, cons
   return true;
 }
 
-void flush_pair_check_queue(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages) {
+void flush_pair_check_queue(const PlanData& plan, const InvertOptions& options, StageSeconds* stages) {
   PairCheckQueue& q = pair_check_queue();
   if (q.lanes == 0) return;
   StageClock clock(stages);

@@ -9,8 +9,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "bezinv/invert.hpp"
-#include "bezinv/plan.hpp"
+#include "bezinv/profile.hpp"
+#include "plan_data.hpp"
 #include "pipeline/candidate.hpp"
 #include "pipeline/workspace.hpp"
 
@@ -47,6 +47,6 @@ int null_space_roots(int n, const BatchWorkspace& w, std::size_t l, double roots
 bool queue_second_parameters(int n, const BatchWorkspace& w, std::size_t l, const Candidate& c, PointResult* target);
 
 // Runs the check for every waiting lane: answered on the fast path, or handed to the SVD queue.
-void flush_pair_check_queue(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages);
+void flush_pair_check_queue(const PlanData& plan, const InvertOptions& options, StageSeconds* stages);
 
 }  // namespace bezinv::detail

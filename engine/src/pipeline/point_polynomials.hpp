@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <span>
 
-#include "bezinv/plan.hpp"
+#include "plan_data.hpp"
 #include "bezinv/tolerances.hpp"
 
 namespace bezinv::detail {
@@ -20,7 +20,7 @@ struct PointPolynomials {
   std::span<const double> q_span() const { return {q.data(), static_cast<std::size_t>(n + 1)}; }
 };
 
-inline PointPolynomials point_polynomials(const InversionPlan& plan, double u0, double v0) {
+inline PointPolynomials point_polynomials(const PlanData& plan, double u0, double v0) {
   PointPolynomials pq;
   pq.n = plan.degree;
   for (int i = 0; i <= pq.n; ++i) {

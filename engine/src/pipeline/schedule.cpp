@@ -54,7 +54,7 @@ void for_each_batch(std::size_t count, const InvertOptions& options, Body&& body
 
 }  // namespace
 
-void invert_curve(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
+void invert_curve(const PlanData& plan, std::span<const Point> points, std::span<PointResult> results,
                   const InvertOptions& options, StageSeconds* stages) {
   // Stage times are summed per thread, then added up (seconds of work, not wall time). The
   // per-thread clocks only when asked for: made on every call, they cost more than a run of a few
@@ -88,7 +88,7 @@ void invert_curves(std::span<const InversionPlan> plans, std::span<const int> cu
   std::size_t begin = 0;
   const std::size_t count = points.size();
   auto invert_run = [&](const Run& run, const InvertOptions& run_options) {
-    invert_curve(plans[curve_of[run.begin]], points.subspan(run.begin, run.end - run.begin),
+    invert_curve(plan_data(plans[curve_of[run.begin]]), points.subspan(run.begin, run.end - run.begin),
                  results.subspan(run.begin, run.end - run.begin), run_options, nullptr);
   };
   while (begin < count) {

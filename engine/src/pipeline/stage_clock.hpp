@@ -2,7 +2,7 @@
 // Time per stage for `bezinv profile` (StageSeconds): a no-op unless the caller asked for it.
 #include <chrono>
 
-#include "bezinv/invert.hpp"
+#include "bezinv/profile.hpp"
 
 namespace bezinv::detail {
 

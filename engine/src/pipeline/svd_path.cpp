@@ -47,7 +47,7 @@ double linear_parameter(const PointPolynomials& pq) {
 
 }  // namespace
 
-void svd_path(const InversionPlan& plan, const double* B, const double* u, const double* v,
+void svd_path(const PlanData& plan, const double* B, const double* u, const double* v,
               PointResult* const* target, std::size_t m, const InvertOptions& options, BatchWorkspace& w,
               StageClock& clock) {
   const int n = plan.degree, nn = n * n;

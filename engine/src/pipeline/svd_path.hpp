@@ -5,7 +5,7 @@
 #include <cstddef>
 
 #include "bezinv/invert.hpp"
-#include "bezinv/plan.hpp"
+#include "plan_data.hpp"
 #include "pipeline/stage_clock.hpp"
 #include "pipeline/workspace.hpp"
 
@@ -13,7 +13,7 @@ namespace bezinv::detail {
 
 // Stages 2-5 for m compacted lanes: lane k's B is entry (r, c) at B[(r n + c) kBatchLanes + k],
 // its point (u[k], v[k]), its answer *target[k]. Uses w's SVD and candidate storage.
-void svd_path(const InversionPlan& plan, const double* B, const double* u, const double* v,
+void svd_path(const PlanData& plan, const double* B, const double* u, const double* v,
               PointResult* const* target, std::size_t m, const InvertOptions& options, BatchWorkspace& w,
               StageClock& clock);
 

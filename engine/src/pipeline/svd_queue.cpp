@@ -10,7 +10,7 @@ SvdQueue& svd_queue() {
   return queue;
 }
 
-void flush_svd_queue(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages) {
+void flush_svd_queue(const PlanData& plan, const InvertOptions& options, StageSeconds* stages) {
   SvdQueue& queue = svd_queue();
   if (queue.size == 0) return;
   StageClock clock(stages);

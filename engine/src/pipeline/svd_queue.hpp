@@ -5,8 +5,8 @@
 #include <array>
 #include <cstddef>
 
-#include "bezinv/invert.hpp"
-#include "bezinv/plan.hpp"
+#include "bezinv/profile.hpp"
+#include "plan_data.hpp"
 #include "bezinv/tolerances.hpp"
 #include "pipeline/workspace.hpp"
 
@@ -34,6 +34,6 @@ struct SvdQueue {
 SvdQueue& svd_queue();
 
 // Runs the lanes waiting in this thread's queue through the SVD path.
-void flush_svd_queue(const InversionPlan& plan, const InvertOptions& options, StageSeconds* stages);
+void flush_svd_queue(const PlanData& plan, const InvertOptions& options, StageSeconds* stages);
 
 }  // namespace bezinv::detail

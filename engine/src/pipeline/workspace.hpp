@@ -18,7 +18,7 @@ inline constexpr std::size_t kBatchLanes = 64;
 // Per-thread storage for one batch, sized for the largest degree once: nothing is allocated per
 // point or per batch. Matrices and vectors are lane-major: entry i of lane l at [i * kBatchLanes + l].
 struct BatchWorkspace {
-  std::array<double, kBatchLanes> u, v;          // the points, normalized (InversionPlan::normalize)
+  std::array<double, kBatchLanes> u, v;          // the points, normalized (PlanData::normalize)
   std::array<std::uint8_t, kBatchLanes> active;  // lane still undecided
   std::vector<double> B = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
   // The SVD path: singular values and vectors, and the algebraic t read from the last vector.
