@@ -90,7 +90,7 @@ bool has_root_on_unit_interval(const std::vector<double>& coefficients) {
     if (all_positive || all_negative) continue;
     if (c.front() == 0.0 || c.back() == 0.0) return true;
     if ((c.front() > 0) != (c.back() > 0)) return true;
-    if (piece.depth >= 40) return true;
+    if (piece.depth >= kDenominatorRootHalvings) return true;
     // Split at 1/2: the left half's coefficients are the first points of each de Casteljau
     // level, the right half's the last ones.
     const int n = static_cast<int>(c.size()) - 1;

@@ -26,8 +26,7 @@ bool degree_drops(const PlanData& plan, double u0, double v0) {
 // The cheap test: bound_p <= sum_i C(n,i) (|X_i| + |u0| |W_i|) = a + |u0| b with a and b per curve,
 // so a point whose |lead_p| exceeds kDegreeDropRatio times twice that cannot drop (twice: room for
 // the rounding of both sums, ~n eps relative). Only where some point passes it are the exact bounds
-// computed, lanes innermost so that the loops vectorize. The check cost 7% of the whole pipeline
-// at degree 3 with the exact bounds for every point (perf).
+// computed, lanes innermost so that the loops vectorize (docs/accuracy-model.md, "Degree drops").
 void degree_drops_batch(const PlanData& plan, const double* u, const double* v, std::size_t count,
                         std::uint8_t* drops) {
   const int n = plan.degree;

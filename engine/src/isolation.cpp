@@ -136,10 +136,9 @@ void piece(PlanData& plan, int j, int K, const CoordinateProducts& products, Pie
     p.positive = false;
     return;
   }
-  // Room for the rounding of the split and the divisions (~n eps of the coordinates; 1e-12 is
-  // far above it and far below any tolerance a point would be judged by).
+  // Room for the rounding of the split and the divisions (~n eps of the coordinates).
   const double size = std::max({std::abs(x_min), std::abs(x_max), std::abs(y_min), std::abs(y_max)});
-  const double margin = 1e-12 * (1.0 + size);
+  const double margin = kIsolationMargin * (1.0 + size);
   double* const box = plan.isolation_boxes.data();  // x centres, x half-widths, y centres, y half-widths
   box[j] = 0.5 * (x_min + x_max);
   box[K + j] = 0.5 * (x_max - x_min) + margin;
@@ -158,8 +157,8 @@ void piece(PlanData& plan, int j, int K, const CoordinateProducts& products, Pie
       p.gx[p.generators] = fx.h[k];
       p.gy[p.generators] = r * fy.h[k];
       // (hypot only where the squares could underflow, which would drop a tiny generator from the
-      // cone: 2n calls a piece were a tenth of make_plan at degree 3. A normalized curve's
-      // generators are far from overflow, and the bounds keep a factor 2 for rounding.)
+      // cone: it is slow. A normalized curve's generators are far from overflow, and the bounds
+      // keep a factor 2 for rounding.)
       const double gx = p.gx[p.generators], gy = p.gy[p.generators], squares = gx * gx + gy * gy;
       p.length[p.generators++] = squares > 1e-280 ? std::sqrt(squares) : std::hypot(gx, gy);
     }
@@ -208,15 +207,9 @@ void bounds_around(PlanData& plan, int j, int K, const Piece* const* around, int
 
 int isolation_piece_count(int degree) {
   // A curve of higher degree turns more, and a piece whose tangents turn by 45 degrees or more
-  // certifies nothing around it. Each on-curve point the certificate refuses pays for the pivoted
-  // kernel and the second-parameter walks (pass 2): with 32 pieces, 16% of the pipeline at degree
-  // 20 (perf). Refusals measured with `bezinv profile --points 300000` (16 random curves on
-  // perturbed arcs), K = 32 / 64 / 128 / 256:
-  //   degree 10: 0.77% / 0.10% / 0 / 0;   degree 12: 0.40% / 0.19% / 0.05% / 0
-  //   degree 15: 2.9% / 0.77% / 0.05% / 0;   degree 20: 2.8% / 1.5% / 0.86% / 0.40%
-  //   degree 24: 4.8% / 2.2% / 1.0% / 0.29%
-  // and up to degree 8, none at 32. The cost is make_plan's: about 1.5 ms at degree 20 with 256
-  // pieces against 0.35 ms with 32 (O(K n^2) for the pieces, O(K^2) for the distances of the boxes).
+  // certifies nothing around it; more pieces cost make_plan O(K n^2 + K^2). Speed only: a lane
+  // the certificate refuses goes on to the gap pass. The refusal rates per K and degree behind
+  // these counts: docs/fast-path.md, "The isolation certificate".
   if (degree <= 9) return 32;
   if (degree <= 14) return 128;
   return kIsolationMaxPieces;
@@ -286,7 +279,7 @@ int piece_of(const PlanData& plan, double t) {
 }
 
 // The margin on the tolerance of both tests: room for the rounding of the distances.
-double isolation_limit(double tolerance) { return tolerance * (1 + 1e-12); }
+double isolation_limit(double tolerance) { return tolerance * (1 + kIsolationMargin); }
 
 // Around t (in piece j): every stationary point of the distance on N lies within
 // distance / monotone of t, and below isolation_unique there is only one, t itself.
@@ -316,8 +309,7 @@ bool isolated(const PlanData& plan, double u0, double v0, double t, double dista
   if (!isolated_around(plan, j, distance)) return false;
   const double limit = isolation_limit(tolerance);
   if (plan.isolation_far[j] - distance > limit) return true;
-  // Otherwise P0 itself against every box not next to t's: all farther than the tolerance. (Box by
-  // box, this is what took 8% of the pipeline at degree 8 before the comparison above, perf.)
+  // Otherwise P0 itself against every box not next to t's: all farther than the tolerance.
   const double* x_centre = plan.isolation_boxes.data();
   const double* x_half = x_centre + K;
   const double* y_centre = x_centre + 2 * K;

@@ -4,8 +4,8 @@
 //
 // The fast path must look for a second parameter where the SVD path would (a small sigma_{n-1}):
 // it refines the roots of span{z, second} along the segment, and most of them walk, in safeguarded
-// Newton steps, back to the point's own t. At degrees 15-20 those walks were a third of the whole
-// pipeline (measured). This certificate answers the same question without walking, from data
+// Newton steps, back to the point's own t (docs/fast-path.md, "The isolation certificate"). This
+// certificate answers the same question without walking, from data
 // computed once per curve, in one comparison for most lanes (one per piece for the rest):
 //
 //  1. Far from t. The curve is cut into K = plan.isolation_pieces pieces [j/K, (j+1)/K]. With positive

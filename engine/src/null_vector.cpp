@@ -80,7 +80,7 @@ int parameters_from_null_space(std::span<const double> u, std::span<const double
   if (scale == 0.0 || !std::isfinite(scale)) return 0;
   // qa ~ 0: E is rank-deficient on the null space, i.e. beta(infinity) is in it (a degree drop);
   // the one finite root is then -qc/qb.
-  if (std::abs(qa) <= 1e-13 * scale) {
+  if (std::abs(qa) <= kPencilInfinityRatio * scale) {
     if (qb == 0.0) return 0;
     t[0] = -qc / qb;
     return 1;
@@ -88,7 +88,7 @@ int parameters_from_null_space(std::span<const double> u, std::span<const double
   double disc = qb * qb - 4 * qa * qc;
   // A slightly negative discriminant is a double root blurred by rounding (t1 ~ t2).
   if (disc < 0) {
-    if (disc < -1e-10 * qb * qb) return 0;
+    if (disc < -kDoubleRootSlack * qb * qb) return 0;
     disc = 0;
   }
   // Stable quadratic formula: no cancellation in the larger-magnitude root.
@@ -122,7 +122,7 @@ int parameters_from_null_space(std::span<const double> basis, int k, std::span<d
     const std::complex<double> alpha = qz.alphas()(j);
     const double beta = qz.betas()(j);
     // A root at infinity (a degree drop), or too far out to be more than rounding.
-    if (!(std::abs(beta) > 1e-13 * scale)) continue;
+    if (!(std::abs(beta) > kPencilInfinityRatio * scale)) continue;
     const double re = alpha.real() / beta, im = alpha.imag() / beta;
     if (!std::isfinite(re) || std::abs(im) > kComplexRootSlack * std::max(1.0, std::abs(re))) continue;
     t[count++] = re;

@@ -125,7 +125,7 @@ Refined refine_parameter(const PlanData& plan, double u0, double v0, double t0, 
       // fast there (|P'| ~ 1e12 next to a tiny weight) that those ulps of t move P by more than
       // a few ulps of its size: then it is measured at the new t.
       t = next;
-      if (moved <= 4 * kEpsilon * std::max(1.0, std::abs(t)))
+      if (moved <= kNewtonStopUlps * kEpsilon * std::max(1.0, std::abs(t)))
         return {t, moved * moved * speed2 <= 16 * kEpsilon * kEpsilon ? d : distance(plan, u0, v0, t)};
       d_current = false;
       continue;
@@ -140,7 +140,7 @@ Refined refine_parameter(const PlanData& plan, double u0, double v0, double t0, 
         const double moved = std::abs(next - t);
         t = next;
         d = dn;
-        if (moved <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) return {t, d};
+        if (moved <= kNewtonStopUlps * kEpsilon * std::max(1.0, std::abs(t))) return {t, d};
         break;
       }
       step *= 0.5;
@@ -160,9 +160,8 @@ double nearest_parameter_on_segment(const PlanData& plan, double u0, double v0, 
   // The same numbers as distance() at k / S: P(k / S) was computed by curve_point in make_plan.
   const double* p = plan.nearest_samples.data();
   for (int k = 0; k <= samples; ++k) d[k] = length(p[2 * k] - u0, p[2 * k + 1] - v0);
-  // Local minima of the sampled distance; each marks a basin to refine in. The best kMaxBasins
-  // are kept (a curve of degree n has at most 2n-1 of them, and only the nearest few can win).
-  constexpr int kMaxBasins = 8;
+  // Local minima of the sampled distance; each marks a basin to refine in (the best kMaxBasins).
+  constexpr int kMaxBasins = kNearestMaxBasins;
   std::array<std::pair<double, int>, kMaxBasins + 1> minima;
   int found = 0;
   for (int k = 0; k <= samples; ++k) {
@@ -183,9 +182,8 @@ double nearest_parameter_on_segment(const PlanData& plan, double u0, double v0, 
     const Refined r = refine_parameter(plan, u0, v0, t0, /*stay_on_segment=*/true);
     if (r.distance < best_d) { best_d = r.distance; best_t = r.t; }
   };
-  // One at a time: through the kernels' lane-batched refinement (a lane per start) this was
-  // slower (measured 0.3M -> 0.27M off-curve points/s at n = 8): 2-4 starts fill few lanes, and
-  // a group runs as long as its slowest lane.
+  // One at a time, not through the lane-batched kernel: 2-4 starts fill few lanes, and a group
+  // runs as long as its slowest lane (docs/accuracy-model.md, "The nearest point of the segment").
   if (hint >= 0.0 && hint <= 1.0) consider(hint);
   for (int i = 0; i < found; ++i) consider(static_cast<double>(minima[i].second) / samples);
   return best_t;

@@ -8,14 +8,11 @@
 #include "bezinv/kernels/symmetric_svd.hpp"
 #include "pipeline/candidate.hpp"
 #include "pipeline/decide.hpp"
+#include "pipeline/limits.hpp"
 #include "pipeline/point_polynomials.hpp"
 
 namespace bezinv::detail {
 namespace {
-
-// The lane-batched Jacobi kernel is compiled for exactly the degrees it is given.
-static_assert(kLaneBatchedSvdMaxDegree == kernels::kSymmetricSvdMaxSize,
-              "kernels::kSymmetricSvdMaxSize must be the largest n the engine gives the lane-batched SVD");
 
 // Stage 2 for a whole batch. Lane l's B is entry (r, c) at B[(r n + c) stride + l]; sigma and V
 // come back in the same lane-major layout (kernels/include/bezinv/kernels/batch.hpp). Up to
