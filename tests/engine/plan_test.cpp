@@ -2,7 +2,11 @@
 // a time (the same numbers, in order) and its error for curves that fail validation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstring>
+#include <string>
 #include <limits>
 #include <random>
 #include <vector>
@@ -50,6 +54,47 @@ TEST(MakePlans, TheSamePlansAsOneAtATimeInOrder) {
     }
   }
   EXPECT_TRUE(make_plans({}, 2).empty());
+}
+
+// What a user sees of a plan: a cubic given elevated to degree 5 (in double, rounded as a CAD system would) is
+// inverted at degree 3; the diagonal is that of its control points' box, from the points as given.
+TEST(InversionPlan, AccessorsSayWhatThePlanIsFor) {
+  // (0,0) (1,2) (3,2) (4,0) elevated twice.
+  const std::vector<std::array<double, 2>> cubic{{0, 0}, {1, 2}, {3, 2}, {4, 0}};
+  std::vector<std::array<double, 2>> points = cubic;
+  for (int times = 0; times < 2; ++times) {  // P'_i = i/(m+1) P_{i-1} + (1 - i/(m+1)) P_i
+    const int m = static_cast<int>(points.size()) - 1;
+    std::vector<std::array<double, 2>> up(points.size() + 1);
+    up.front() = points.front();
+    up.back() = points.back();
+    for (int i = 1; i <= m; ++i)
+      for (int k = 0; k < 2; ++k)
+        up[i][k] = (i * points[i - 1][k] + (m + 1 - i) * points[i][k]) / (m + 1);
+    points = up;
+  }
+  const Curve curve = Curve::bezier("elevated", points);
+  const InversionPlan plan = make_plan(curve);
+  EXPECT_EQ(plan.curve().id, "elevated");
+  EXPECT_EQ(plan.input_degree(), 5);
+  EXPECT_EQ(plan.degree(), 3);
+  EXPECT_TRUE(plan.usable());
+  EXPECT_STREQ(plan.reason(), "");
+  double x_max = 0, y_max = 0;
+  for (const auto& p : points) x_max = std::max(x_max, p[0]), y_max = std::max(y_max, p[1]);
+  EXPECT_DOUBLE_EQ(plan.diagonal(), std::hypot(x_max, y_max));  // the box is [0, x_max] x [0, y_max]
+
+  const InversionPlan coincide = make_plan(Curve::bezier("dot", {{1, 2}, {1, 2}, {1, 2}}));
+  EXPECT_FALSE(coincide.usable());
+  EXPECT_NE(std::string(coincide.reason()), "");
+
+  // An empty plan (vectors of plans are sized before they are filled) is not usable either.
+  const InversionPlan empty;
+  EXPECT_FALSE(empty.usable());
+  EXPECT_NE(std::string(empty.reason()), "");
+
+  // Copies share the plan: the same data, not a new computation.
+  const InversionPlan copy = plan;
+  EXPECT_EQ(&detail::plan_data(copy), &detail::plan_data(plan));
 }
 
 // Two bad curves among good ones: the error names the first, whichever thread met it.
