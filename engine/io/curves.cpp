@@ -19,7 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bezinv/io.hpp"
-#include "io/quote.hpp"
+#include "quote.hpp"
 #include "io/whole_file.hpp"
 
 namespace bezinv {

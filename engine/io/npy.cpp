@@ -11,7 +11,7 @@
 #include <string>
 
 #include "bezinv/io.hpp"
-#include "io/quote.hpp"
+#include "quote.hpp"
 
 namespace bezinv::detail {
 namespace {

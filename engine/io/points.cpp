@@ -22,7 +22,7 @@
 #include "bezinv/io.hpp"
 #include "io/npy.hpp"
 #include "io/point_readers.hpp"
-#include "io/quote.hpp"
+#include "quote.hpp"
 #include "io/read_points_csv.hpp"
 
 namespace bezinv {

@@ -21,7 +21,7 @@
 #include "bezinv/io.hpp"
 #include "io/npy.hpp"
 #include "io/point_readers.hpp"
-#include "io/quote.hpp"
+#include "quote.hpp"
 
 namespace bezinv {
 namespace {

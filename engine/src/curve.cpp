@@ -7,7 +7,7 @@
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/tolerances.hpp"
-#include "io/quote.hpp"
+#include "quote.hpp"
 
 namespace bezinv {
 

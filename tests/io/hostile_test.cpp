@@ -21,7 +21,7 @@
 #include "bezinv/curve.hpp"
 #include "bezinv/io.hpp"
 #include "io/read_points_csv.hpp"
-#include "io/quote.hpp"
+#include "quote.hpp"
 #include "io/whole_file.hpp"
 #include "support/scratch_directory.hpp"
 
