@@ -26,67 +26,81 @@ namespace hn = wide;
 template <int N>
 inline constexpr bool kUnrolledSolve = HWY_TARGET != HWY_SCALAR && HWY_TARGET != HWY_EMU128 && N <= 24;
 
-// for (i = begin; i < end; ++i) f(i), every iteration written out when kUnroll. (The unroll
-// pragma cannot take a template-dependent count: GCC 12 crashes.)
-template <bool kUnroll, class F>
-HWY_INLINE void each(int begin, int end, F&& f) {
+// for (i = begin; i < end; ++i) f(i, args...), every iteration written out when kUnroll. (The
+// unroll pragma cannot take a template-dependent count: GCC 12 crashes.) f captures nothing: what
+// it works on comes as arguments, which become plain values once inlined, where a capture would
+// be a field of the closure that the optimizer must trace through every store of the loop.
+template <bool kUnroll, class F, class... Args>
+HWY_INLINE void each(int begin, int end, F f, Args... args) {
   if constexpr (kUnroll) {
 #pragma GCC unroll 32
-    for (int i = begin; i < end; ++i) f(i);
+    for (int i = begin; i < end; ++i) f(i, args...);
   } else {
-    for (int i = begin; i < end; ++i) f(i);
+    for (int i = begin; i < end; ++i) f(i, args...);
   }
 }
 
-// The substitutions for lanes g .. g + MaxLanes(d) - 1 of the factors' group, d one native vector
-// (a wide group's G x N vectors would not fit in the registers; the G of them still overlap in
-// the out-of-order window). Column-oriented: each x_k, once final, is subtracted from the
-// components after it (forward) or before it (backward), so that the updates of one column are
-// independent and the critical path is N steps, not the N^2 / 2 of row-by-row dot products.
+// The loop bodies given to each(): inlined into the loop, so that the unroller sees the literal
+// loops.
+#ifndef BEZINV_LOOP_BODY
+#define BEZINV_LOOP_BODY HWY_ATTR __attribute__((always_inline))
+#endif
+
+// The substitutions for lanes g .. g + MaxLanes(DN()) - 1 of the factors' group, DN one native
+// vector (a wide group's G x N vectors would not fit in the registers; the G of them still
+// overlap in the out-of-order window). Column-oriented: each x_k, once final, is subtracted from
+// the components after it (forward) or before it (backward), so that the updates of one column
+// are independent and the critical path is N steps, not the N^2 / 2 of row-by-row dot products.
 //   PivotedLu (U with its diagonal):  x_k <- x_k / u_kk before column k updates the rest;
 //   Ldlt (L^T, unit diagonal):        x <- D^{-1} x first, then the columns of L^T.
-template <int N, class Factors>
-HWY_INLINE void substitute(wide::Tag<1> d, const Factors& f, std::size_t g, double* HWY_RESTRICT x) {
+template <int N, class Factors, class DN>
+HWY_INLINE void substitute(DN, const Factors& f, std::size_t g, double* HWY_RESTRICT x) {
+  namespace hw = hwy::HWY_NAMESPACE;
+  using V = hw::Vec<DN>;
   constexpr bool kUnroll = kUnrolledSolve<N>;
   constexpr std::size_t L = Factors::L;
-  hn::Vec<wide::Tag<1>> v[N];
-  each<kUnroll>(0, N, [&](int i) HWY_ATTR __attribute__((always_inline)) { v[i] = hn::Load(d, x + i * L + g); });
+  V v[N];
+  each<kUnroll>(0, N, [](int i, V* v, const double* x) BEZINV_LOOP_BODY { v[i] = hw::Load(DN(), x + i * L); }, v,
+                x + g);
   if constexpr (Factors::kRowInterchanges) {  // x <- P x
-    each<kUnroll>(0, N, [&](int k) HWY_ATTR __attribute__((always_inline)) {
-      const auto row = hn::Load(d, f.pivot_row + k * L + g);
-      each<kUnroll>(k + 1, N, [&](int i) HWY_ATTR __attribute__((always_inline)) {
-        const auto swap = hn::Eq(row, hn::Set(d, static_cast<double>(i)));
-        const auto a = v[k], b = v[i];
-        v[k] = hn::IfThenElse(swap, b, a);
-        v[i] = hn::IfThenElse(swap, a, b);
-      });
-    });
+    each<kUnroll>(0, N, [](int k, V* v, const double* pivot_row) BEZINV_LOOP_BODY {
+      const V row = hw::Load(DN(), pivot_row + k * L);
+      each<kUnroll>(k + 1, N, [](int i, V* v, int k, V row) BEZINV_LOOP_BODY {
+        const auto swap = hw::Eq(row, hw::Set(DN(), static_cast<double>(i)));
+        const V a = v[k], b = v[i];
+        v[k] = hw::IfThenElse(swap, b, a);
+        v[i] = hw::IfThenElse(swap, a, b);
+      }, v, k, row);
+    }, v, f.pivot_row + g);
   }
-  each<kUnroll>(0, N, [&](int k) HWY_ATTR __attribute__((always_inline)) {  // x <- L^{-1} x
-    each<kUnroll>(k + 1, N, [&](int i) HWY_ATTR __attribute__((always_inline)) {
-      v[i] = hn::NegMulAdd(hn::Load(d, f.lower(i, k) + g), v[k], v[i]);
-    });
-  });
-  if constexpr (Factors::kSeparateDiagonal)  // x <- D^{-1} x
-    each<kUnroll>(0, N, [&](int k) HWY_ATTR __attribute__((always_inline)) {
-      v[k] = hn::Mul(v[k], hn::Load(d, f.inv_pivot + k * L + g));
-    });
-  each<kUnroll>(0, N, [&](int j) HWY_ATTR __attribute__((always_inline)) {  // x <- U^{-1} x, k = N-1 .. 0
-    const int k = N - 1 - j;
-    if constexpr (!Factors::kSeparateDiagonal) v[k] = hn::Mul(v[k], hn::Load(d, f.inv_pivot + k * L + g));
-    each<kUnroll>(0, k, [&](int i) HWY_ATTR __attribute__((always_inline)) {
-      v[i] = hn::NegMulAdd(hn::Load(d, f.upper(i, k) + g), v[k], v[i]);
-    });
-  });
-  each<kUnroll>(0, N, [&](int i) HWY_ATTR __attribute__((always_inline)) { hn::Store(v[i], d, x + i * L + g); });
+  each<kUnroll>(0, N, [](int k, V* v, const Factors* f, std::size_t g) BEZINV_LOOP_BODY {  // x <- L^{-1} x
+    each<kUnroll>(k + 1, N, [](int i, V* v, const Factors* f, std::size_t g, int k) BEZINV_LOOP_BODY {
+      v[i] = hw::NegMulAdd(hw::Load(DN(), f->lower(i, k) + g), v[k], v[i]);
+    }, v, f, g, k);
+  }, v, &f, g);
+  if constexpr (Factors::kSeparateDiagonal) {  // x <- D^{-1} x
+    each<kUnroll>(0, N, [](int k, V* v, const double* inv_pivot) BEZINV_LOOP_BODY {
+      v[k] = hw::Mul(v[k], hw::Load(DN(), inv_pivot + k * L));
+    }, v, f.inv_pivot + g);
+  }
+  each<kUnroll>(0, N, [](int j, V* v, const Factors* f, std::size_t g) BEZINV_LOOP_BODY {  // x <- U^{-1} x
+    const int k = N - 1 - j;  // columns k = N-1 .. 0
+    if constexpr (!Factors::kSeparateDiagonal) v[k] = hw::Mul(v[k], hw::Load(DN(), f->inv_pivot + k * L + g));
+    each<kUnroll>(0, k, [](int i, V* v, const Factors* f, std::size_t g, int k) BEZINV_LOOP_BODY {
+      v[i] = hw::NegMulAdd(hw::Load(DN(), f->upper(i, k) + g), v[k], v[i]);
+    }, v, f, g, k);
+  }, v, &f, g);
+  each<kUnroll>(0, N, [](int i, const V* v, double* x) BEZINV_LOOP_BODY { hw::Store(v[i], DN(), x + i * L); }, v,
+                x + g);
 }
 
 // x <- A^{-1} x for every lane of the factors' group D. Not inlined: one copy per size and group
 // width instead of one per call site.
 template <int N, class Factors, class D>
 HWY_NOINLINE void solve(D, const Factors& factors, double* HWY_RESTRICT x) {
-  constexpr std::size_t L1 = hn::MaxLanes(wide::Tag<1>());
-  for (std::size_t g = 0; g < hn::MaxLanes(D()); g += L1) substitute<N>(wide::Tag<1>(), factors, g, x);
+  using DN = typename D::D;  // the native vector of the wide group
+  constexpr std::size_t L1 = hwy::HWY_NAMESPACE::MaxLanes(DN());
+  for (std::size_t g = 0; g < hn::MaxLanes(D()); g += L1) substitute<N>(DN(), factors, g, x);
 }
 
 }  // namespace bezinv::kernels::HWY_NAMESPACE
