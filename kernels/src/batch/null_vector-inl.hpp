@@ -13,7 +13,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <limits>
 #include <type_traits>
 
 #include "batch/constants.hpp"
@@ -50,6 +49,7 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
                                     const Source& source, double* HWY_RESTRICT z,
                                     double* HWY_RESTRICT defect, double* HWY_RESTRICT estimate,
                                     double* HWY_RESTRICT second) {
+  static_assert(N >= 2, "n = 1 has no sigma_{n-1}, and no seed needs it");
   constexpr std::size_t L = hn::MaxLanes(D());
   const auto one = hn::Set(d, 1.0);
   const GroupMatrix<Source, D> matrix(d, source, stride, first, lanes);
@@ -133,22 +133,22 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
   for (int r = 0; r < N; ++r) residual2 = hn::MulAdd(hn::Load(d, y + r * L), hn::Load(d, y + r * L), residual2);
   const auto residual = hn::Mul(hn::Sqrt(residual2), scale);
   auto result = unsettled;
-  auto next = hn::Set(d, std::numeric_limits<double>::infinity());  // n = 1: no sigma_{n-1}
+  auto next = hn::Zero(d);  // 1 / growth (kGap)
 
   HWY_ALIGN double w_lanes[kGap ? N * L : 1];  // the deflated iterate: ~ the singular vector of sigma_{n-1}
-  if constexpr (N > 1 && kGap) {
+  if constexpr (kGap) {
     const auto growth = inverse_sigma_next<N>(d, lu, x, w_lanes);  // NaN stays NaN: the lane is redone
     result = hn::Max(result, hn::Mul(hn::Set(d, batch::kEpsilon), growth));
     next = hn::Div(one, growth);
   }
-  // A zero matrix has nullity n: flagged unless n = 1 (then z = (1) is its null vector). NaN (from
-  // an overflow) compares false and is mapped to 1, so that such a lane is redone.
-  result = hn::IfThenElse(zero_matrix, hn::Set(d, N == 1 ? 0.0 : 1.0), result);
+  // A zero matrix has nullity n: flagged. NaN (from an overflow) compares false and is mapped to
+  // 1, so that such a lane is redone.
+  result = hn::IfThenElse(zero_matrix, one, result);
   result = hn::IfThenElse(hn::Le(result, one), result, one);
 
   const auto residual_out = hn::IfThenElse(zero_matrix, hn::Zero(d), residual);
-  // A zero matrix has every direction null: no gap, unless n = 1 (nothing else to separate from).
-  if constexpr (N > 1) next = hn::IfThenElse(zero_matrix, hn::Zero(d), next);
+  // A zero matrix has every direction null: no gap.
+  next = hn::IfThenElse(zero_matrix, hn::Zero(d), next);
   if (lanes == L) {  // a whole group: vector stores (lane by lane is measurably slower at small n)
     hn::StoreU(result, d, defect + first);
     if (estimate) {
@@ -156,7 +156,7 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
       if constexpr (kGap) hn::StoreU(next, d, estimate + stride + first);
     }
     for (int r = 0; r < N; ++r) {
-      if constexpr (N > 1 && kGap)
+      if constexpr (kGap)
         if (second) hn::StoreU(hn::Load(d, w_lanes + r * L), d, second + r * stride + first);
       hn::StoreU(hn::Load(d, x + r * L), d, z + r * stride + first);
     }
@@ -172,7 +172,7 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
       estimate[first + l] = residual_lanes[l];
       if constexpr (kGap) estimate[stride + first + l] = next_lanes[l];
     }
-    if constexpr (N > 1 && kGap)
+    if constexpr (kGap)
       if (second)
         for (int r = 0; r < N; ++r) second[static_cast<std::size_t>(r) * stride + first + l] = w_lanes[r * L + l];
     for (int r = 0; r < N; ++r) z[static_cast<std::size_t>(r) * stride + first + l] = x[r * L + l];
