@@ -185,27 +185,35 @@ std::string benchmark_name(const char* name, const Implementation* impl, int n) 
   return out;
 }
 
+bool takes(int n, int min_size, int max_size) { return n >= min_size && n <= max_size; }
+
+// Each kernel at the sizes it is compiled for (bezinv/kernels/batch.hpp).
 int register_kernels() {
   for (const Implementation* impl : available_implementations())
     for (int n : kSizes) {
-      if (n <= kSymmetricSvdMaxSize)  // compiled only for the sizes the engine gives it (Eigen above)
+      if (takes(n, kSymmetricSvdMinSize, kSymmetricSvdMaxSize))  // Eigen above, in the engine
         benchmark::RegisterBenchmark(benchmark_name("BM_KernelSymmetricSvd", impl, n).c_str(),
                                      BM_KernelSymmetricSvd, impl, n);
-      benchmark::RegisterBenchmark(benchmark_name("BM_KernelNullVector", impl, n).c_str(), BM_KernelNullVector, impl,
-                                   n);
-      benchmark::RegisterBenchmark(benchmark_name("BM_KernelNullVectorSeed", impl, n).c_str(),
-                                   BM_KernelNullVectorSeed, impl, n);
-      benchmark::RegisterBenchmark(benchmark_name("BM_KernelBezoutMatrix", impl, n).c_str(), BM_KernelBezoutMatrix,
-                                   impl, n);
+      if (takes(n, kNullVectorMinSize, kNullVectorMaxSize))
+        benchmark::RegisterBenchmark(benchmark_name("BM_KernelNullVector", impl, n).c_str(), BM_KernelNullVector,
+                                     impl, n);
+      if (takes(n, kNullVectorSeedMinSize, kNullVectorSeedMaxSize))
+        benchmark::RegisterBenchmark(benchmark_name("BM_KernelNullVectorSeed", impl, n).c_str(),
+                                     BM_KernelNullVectorSeed, impl, n);
+      if (takes(n, kBezoutMatrixMinSize, kBezoutMatrixMaxSize))
+        benchmark::RegisterBenchmark(benchmark_name("BM_KernelBezoutMatrix", impl, n).c_str(),
+                                     BM_KernelBezoutMatrix, impl, n);
     }
-  // The seed, B stored or formed, also at every size around the engine's switch between them
-  // (kFormedBMinDegree in engine/src/invert.cpp).
+  // The seed, B stored or formed, at every size around the engine's switch between them
+  // (kFormedBMinDegree in engine/src/invert.cpp), where each is compiled.
   for (const Implementation* impl : available_implementations())
     for (int n : kSeedSizes) {
-      benchmark::RegisterBenchmark(benchmark_name("BM_KernelBezoutSeed_stored", impl, n).c_str(),
-                                   BM_KernelBezoutSeed, impl, n, false);
-      benchmark::RegisterBenchmark(benchmark_name("BM_KernelBezoutSeed_formed", impl, n).c_str(),
-                                   BM_KernelBezoutSeed, impl, n, true);
+      if (takes(n, kNullVectorSeedMinSize, kNullVectorSeedMaxSize))
+        benchmark::RegisterBenchmark(benchmark_name("BM_KernelBezoutSeed_stored", impl, n).c_str(),
+                                     BM_KernelBezoutSeed, impl, n, false);
+      if (takes(n, kBezoutNullVectorSeedMinSize, kBezoutNullVectorSeedMaxSize))
+        benchmark::RegisterBenchmark(benchmark_name("BM_KernelBezoutSeed_formed", impl, n).c_str(),
+                                     BM_KernelBezoutSeed, impl, n, true);
     }
   return 0;
 }

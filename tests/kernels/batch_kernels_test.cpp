@@ -1,11 +1,12 @@
-// The lane-batched kernels (kernels/batch.hpp), every available implementation, n = 1..32, batch
-// sizes around the vector widths (2, 4, 8 lanes). References are never the kernels' own output:
+// The lane-batched kernels (kernels/batch.hpp), every available implementation, every size each is
+// compiled for, batch sizes around the vector widths (2, 4, 8 lanes). References are never the kernels' own output:
 // Eigen::JacobiSVD per lane, or matrices built as B = Q diag(sigma) Q^T with known sigma and Q.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -83,10 +84,10 @@ struct Batch {
     estimate.assign(2 * stride, kNaN);
     second.assign(n * stride, kNaN);
   }
-  // Above kSymmetricSvdMaxSize, where the kernel is not compiled (the engine uses Eigen there),
-  // sigma and V come from Eigen::JacobiSVD: the null-vector checks still have their reference.
+  // Outside the sizes symmetric_svd is compiled for (the engine uses Eigen above), sigma and V
+  // come from Eigen::JacobiSVD: the null-vector checks still have their reference.
   void run(const Implementation& impl) {
-    if (n <= kSymmetricSvdMaxSize) {
+    if (n >= kSymmetricSvdMinSize && n <= kSymmetricSvdMaxSize) {
       impl.symmetric_svd(n, count, stride, B.data(), sigma.data(), V.data());
     } else {
       for (std::size_t l = 0; l < count; ++l) {
@@ -197,8 +198,8 @@ TEST(BatchImplementations, SelectionByName) {
 TEST(BatchSymmetricSvd, MatchesEigenJacobiSvdAndEachOther) {
   std::mt19937_64 rng(20240611);
   double worst_sigma = 0, worst_vector = 0, worst_between = 0;
-  // Every size it is compiled for (n = 1..16: around both vector widths, 4 and 8 doubles).
-  for (int n = 1; n <= kSymmetricSvdMaxSize; ++n) {
+  // Every size it is compiled for (n = 2..16: around both vector widths, 4 and 8 doubles).
+  for (int n = kSymmetricSvdMinSize; n <= kSymmetricSvdMaxSize; ++n) {
     for (std::size_t count : kCounts) {
       std::vector<Dense> matrices;
       for (std::size_t l = 0; l < count; ++l) matrices.push_back(random_symmetric(n, rng));
@@ -241,24 +242,64 @@ TEST(BatchSymmetricSvd, MatchesEigenJacobiSvdAndEachOther) {
   RecordProperty("worst_sigma_between_implementations", sci(worst_between));
 }
 
-// A size a kernel was not compiled for is an error, not a silent no-op (which would leave the
-// outputs as they were).
-TEST(BatchImplementations, SizesAboveTheCompiledOnesThrow) {
+// A size a kernel was not compiled for is an error naming the kernel and its range, not a silent
+// no-op (which would leave the outputs as they were).
+void expect_out_of_range(const std::function<void()>& call, const std::string& kernel, int min, int max) {
+  try {
+    call();
+    ADD_FAILURE() << kernel << ": no exception";
+  } catch (const std::out_of_range& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(kernel), std::string::npos) << message;
+    EXPECT_NE(message.find(std::to_string(min) + ".." + std::to_string(max)), std::string::npos) << message;
+  }
+}
+
+TEST(BatchImplementations, SizesOutsideTheCompiledRangesThrow) {
   constexpr std::size_t count = 3, stride = batch_stride(count);
-  const int n = kSymmetricSvdMaxSize + 1;
-  std::vector<double> B(static_cast<std::size_t>(kMaxBatchSize + 1) * (kMaxBatchSize + 1) * stride, 1.0);
-  std::vector<double> sigma((kMaxBatchSize + 1) * stride), V(B.size()), z(sigma.size()), defect(stride),
-      estimate(2 * stride), t(stride);
+  constexpr int kLargest = kMaxBatchSize + 1;
+  std::vector<double> B(static_cast<std::size_t>(kLargest) * kLargest * stride, 1.0);
+  std::vector<double> sigma(kLargest * stride), V(B.size()), z(sigma.size()), defect(stride), estimate(2 * stride),
+      t(stride, 0.5), u(stride, 0.0), v(stride, 0.0), distance(stride), poison(stride);
+  std::vector<double> coefficients(kLargest + 1, 1.0);
   for (const Implementation* impl : available_implementations()) {
     SCOPED_TRACE(impl->name);
-    EXPECT_THROW(impl->symmetric_svd(n, count, stride, B.data(), sigma.data(), V.data()), std::out_of_range);
-    EXPECT_THROW(impl->null_vector(kMaxBatchSize + 1, count, stride, B.data(), z.data(), defect.data(),
-                                   estimate.data(), nullptr),
-                 std::out_of_range);
-    EXPECT_THROW(impl->null_vector_seed(kMaxBatchSize + 1, count, stride, B.data(), z.data(), defect.data(),
-                                        estimate.data()),
-                 std::out_of_range);
-    EXPECT_THROW(impl->bernstein_parameter(kMaxBatchSize + 1, count, stride, z.data(), t.data()), std::out_of_range);
+    for (int n : {kSymmetricSvdMinSize - 1, kSymmetricSvdMaxSize + 1})
+      expect_out_of_range([&] { impl->symmetric_svd(n, count, stride, B.data(), sigma.data(), V.data()); },
+                          "symmetric_svd", kSymmetricSvdMinSize, kSymmetricSvdMaxSize);
+    for (int n : {kNullVectorMinSize - 1, kNullVectorMaxSize + 1})
+      expect_out_of_range(
+          [&] { impl->null_vector(n, count, stride, B.data(), z.data(), defect.data(), estimate.data(), nullptr); },
+          "null_vector", kNullVectorMinSize, kNullVectorMaxSize);
+    for (int n : {kNullVectorSeedMinSize - 1, kNullVectorSeedMaxSize + 1})
+      expect_out_of_range(
+          [&] { impl->null_vector_seed(n, count, stride, B.data(), z.data(), defect.data(), estimate.data()); },
+          "null_vector_seed", kNullVectorSeedMinSize, kNullVectorSeedMaxSize);
+    for (int n : {kBezoutNullVectorSeedMinSize - 1, kBezoutNullVectorSeedMaxSize + 1})
+      expect_out_of_range(
+          [&] {
+            impl->bezout_null_vector_seed(n, count, stride, B.data(), B.data(), B.data(), nullptr, u.data(), v.data(),
+                                          z.data(), defect.data(), estimate.data(), poison.data());
+          },
+          "bezout_null_vector_seed", kBezoutNullVectorSeedMinSize, kBezoutNullVectorSeedMaxSize);
+    for (int n : {kBezoutMatrixMinSize - 1, kBezoutMatrixMaxSize + 1})
+      expect_out_of_range(
+          [&] {
+            impl->bezout_matrix(n, count, stride, B.data(), B.data(), B.data(), nullptr, u.data(), v.data(),
+                                V.data(), poison.data());
+          },
+          "bezout_matrix", kBezoutMatrixMinSize, kBezoutMatrixMaxSize);
+    for (int n : {kBernsteinParameterMinSize - 1, kBernsteinParameterMaxSize + 1})
+      expect_out_of_range([&] { impl->bernstein_parameter(n, count, stride, z.data(), t.data()); },
+                          "bernstein_parameter", kBernsteinParameterMinSize, kBernsteinParameterMaxSize);
+    for (int degree : {kRationalNewtonMinDegree - 1, kRationalNewtonMaxDegree + 1}) {
+      const RationalCurve curve{degree, coefficients.data(), coefficients.data(), coefficients.data(),
+                                coefficients.data()};
+      const NewtonSettings settings{10, 0.125, 1e-6, 10, 1e-12};
+      expect_out_of_range(
+          [&] { impl->rational_newton(curve, settings, count, u.data(), v.data(), t.data(), distance.data()); },
+          "rational_newton", kRationalNewtonMinDegree, kRationalNewtonMaxDegree);
+    }
   }
 }
 
@@ -274,12 +315,21 @@ TEST(BatchNullVector, RankDeficientByConstruction) {
   std::mt19937_64 rng(7);
   double worst_rank1_defect = 0, least_nullity2_defect = 1, least_regular_residual = 1, worst_next_over = 1,
          least_next_over = 1, least_second_in_null_space = 1;
-  for (int n = 1; n <= kMaxBatchSize; ++n) {
-    for (std::size_t count : {std::size_t{1}, std::size_t{5}, std::size_t{8}, std::size_t{17}}) {
+  constexpr std::size_t kCountsHere[] = {1, 5, 8, 17};
+  // The matrices of n = 1, which null_vector no longer takes, are still drawn: the bounds below were
+  // measured on the matrices the generator gives every later size after them.
+  for (std::size_t count : kCountsHere)
+    for (std::size_t l = 0; l < count; ++l) {
+      with_nullity(1, 1, rng);
+      with_nullity(1, 0, rng);
+    }
+  static_assert(kNullVectorMinSize == 2);
+  for (int n = kNullVectorMinSize; n <= kNullVectorMaxSize; ++n) {
+    for (std::size_t count : kCountsHere) {
       std::vector<Constructed> rank1, nullity2, regular;
       for (std::size_t l = 0; l < count; ++l) {
         rank1.push_back(with_nullity(n, 1, rng));
-        if (n >= 2) nullity2.push_back(with_nullity(n, 2, rng));
+        nullity2.push_back(with_nullity(n, 2, rng));
         regular.push_back(with_nullity(n, 0, rng));
       }
       auto matrices = [](const std::vector<Constructed>& c) {
@@ -304,42 +354,36 @@ TEST(BatchNullVector, RankDeficientByConstruction) {
           // The evidence without an SVD, against the constructed singular values (Eigen's here).
           const double frobenius = rank1[l].b.norm();
           EXPECT_LE(a.estimate[l], 64 * kEps) << "||Bz|| / ||B||_F, lane " << l;
-          if (n >= 2) {
-            EXPECT_NEAR(a.next(l).norm(), 1.0, 1e-14) << "lane " << l;
-            EXPECT_LE(std::abs(a.next(l).dot(a.null(l))), 1e-12) << "second is orthogonal to z, lane " << l;
-            const double next = a.s(l, n - 2) / frobenius;
-            const double ratio = a.estimate[a.stride + l] / next;
-            // From above in exact arithmetic; the deflated solves round (measured down to 0.9986).
-            EXPECT_GE(ratio, 0.99) << "sigma_{n-1} is estimated from above, lane " << l;
-            least_next_over = std::min(least_next_over, ratio);
-            EXPECT_LE(ratio, kNextEstimateMaxOver) << "lane " << l;
-            worst_next_over = std::max(worst_next_over, ratio);
-            // n <= 3: the deflated space is at most a plane, on which the Ritz value is exact.
-            if (n <= 3) {
-              EXPECT_NEAR(ratio, 1.0, 1e-9) << "exact at n <= 3, lane " << l;
-            }
-          } else {
-            EXPECT_EQ(a.estimate[a.stride + l], std::numeric_limits<double>::infinity());
+          EXPECT_NEAR(a.next(l).norm(), 1.0, 1e-14) << "lane " << l;
+          EXPECT_LE(std::abs(a.next(l).dot(a.null(l))), 1e-12) << "second is orthogonal to z, lane " << l;
+          const double next = a.s(l, n - 2) / frobenius;
+          const double ratio = a.estimate[a.stride + l] / next;
+          // From above in exact arithmetic; the deflated solves round (measured down to 0.9986).
+          EXPECT_GE(ratio, 0.99) << "sigma_{n-1} is estimated from above, lane " << l;
+          least_next_over = std::min(least_next_over, ratio);
+          EXPECT_LE(ratio, kNextEstimateMaxOver) << "lane " << l;
+          worst_next_over = std::max(worst_next_over, ratio);
+          // n <= 3: the deflated space is at most a plane, on which the Ritz value is exact.
+          if (n <= 3) {
+            EXPECT_NEAR(ratio, 1.0, 1e-9) << "exact at n <= 3, lane " << l;
           }
         }
-        if (n >= 2) {
-          Batch b(matrices(nullity2), junk);
-          b.run(*impl);
-          for (std::size_t l = 0; l < count; ++l) {
-            EXPECT_GE(b.defect[l], 1e-3) << "nullity 2 must be flagged, lane " << l;
-            least_nullity2_defect = std::min(least_nullity2_defect, b.defect[l]);
-            // Whatever it is, z lies in the 2-D null space, and so do the SVD's last two vectors.
-            const Dense null_space = nullity2[l].q.rightCols(2);
-            EXPECT_GE((null_space.transpose() * b.null(l)).norm(), 1 - 1e-10) << "lane " << l;
-            // The deflated iterate heads for the other null direction (both are amplified ~1/eps by
-            // the solves, and z is projected out). Not to rounding level: at nullity 2 the rounding
-            // of the two tiny pivots decides the mix (measured down to 0.9855); a random unit vector
-            // would give ~sqrt(2/n). The engine never answers a nullity-2 lane on the fast path.
-            const double in_span = (null_space.transpose() * b.next(l)).norm();
-            EXPECT_GE(in_span, 0.95) << "second, lane " << l;
-            least_second_in_null_space = std::min(least_second_in_null_space, in_span);
-            for (int k : {n - 2, n - 1}) EXPECT_GE((null_space.transpose() * b.v(l, k)).norm(), 1 - 1e-12);
-          }
+        Batch b(matrices(nullity2), junk);
+        b.run(*impl);
+        for (std::size_t l = 0; l < count; ++l) {
+          EXPECT_GE(b.defect[l], 1e-3) << "nullity 2 must be flagged, lane " << l;
+          least_nullity2_defect = std::min(least_nullity2_defect, b.defect[l]);
+          // Whatever it is, z lies in the 2-D null space, and so do the SVD's last two vectors.
+          const Dense null_space = nullity2[l].q.rightCols(2);
+          EXPECT_GE((null_space.transpose() * b.null(l)).norm(), 1 - 1e-10) << "lane " << l;
+          // The deflated iterate heads for the other null direction (both are amplified ~1/eps by
+          // the solves, and z is projected out). Not to rounding level: at nullity 2 the rounding
+          // of the two tiny pivots decides the mix (measured down to 0.9855); a random unit vector
+          // would give ~sqrt(2/n). The engine never answers a nullity-2 lane on the fast path.
+          const double in_span = (null_space.transpose() * b.next(l)).norm();
+          EXPECT_GE(in_span, 0.95) << "second, lane " << l;
+          least_second_in_null_space = std::min(least_second_in_null_space, in_span);
+          for (int k : {n - 2, n - 1}) EXPECT_GE((null_space.transpose() * b.v(l, k)).norm(), 1 - 1e-12);
         }
         Batch c(matrices(regular), junk);
         c.run(*impl);
@@ -368,7 +412,7 @@ TEST(BatchNullVector, SeedWithoutPivoting) {
   std::mt19937_64 rng(11);
   std::size_t lanes = 0;
   double worst_cos = 0, worst_residual_error = 0, least_regular_residual = 1;
-  for (int n = 1; n <= kMaxBatchSize; ++n) {
+  for (int n = kNullVectorSeedMinSize; n <= kNullVectorSeedMaxSize; ++n) {
     for (std::size_t count : {std::size_t{3}, std::size_t{17}, std::size_t{64}}) {
       std::vector<Constructed> constructed;
       std::vector<Dense> matrices;
@@ -396,8 +440,7 @@ TEST(BatchNullVector, SeedWithoutPivoting) {
           const Dense& b = constructed[l].b;
           const Eigen::VectorXd z = a.null(l);
           EXPECT_NEAR(z.norm(), 1.0, 1e-14) << "lane " << l;
-          // (A zero matrix, n = 1 of nullity 1: residual 0, as null_vector's.)
-          const double residual = b.norm() > 0 ? (b * z).norm() / b.norm() : 0.0;
+          const double residual = (b * z).norm() / b.norm();
           EXPECT_NEAR(a.estimate[l], residual, 1e-14 + 1e-12 * residual) << "lane " << l;
           worst_residual_error = std::max(worst_residual_error, std::abs(a.estimate[l] - residual));
           if (l % 2) {

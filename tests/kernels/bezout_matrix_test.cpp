@@ -27,7 +27,7 @@ void expect_entries_in_every_implementation(bool bilinear) {
   std::mt19937_64 rng(bilinear ? 21 : 22);
   std::uniform_real_distribution<double> coefficient(-3.0, 3.0), coordinate(-2.0, 2.0);
   std::vector<double> reference;  // the first implementation's entries, for the others
-  for (int n = 1; n <= kMaxBatchSize; ++n) {
+  for (int n = kBezoutMatrixMinSize; n <= kBezoutMatrixMaxSize; ++n) {
     for (std::size_t count : {std::size_t{1}, std::size_t{5}, std::size_t{8}, std::size_t{19}}) {
       const std::size_t nn = static_cast<std::size_t>(n) * n, stride = batch_stride(count);
       std::vector<double> B0(nn), Bx(nn), By(nn), Bxy(nn), u(count), v(count);

@@ -78,9 +78,8 @@ void bernstein_parameter_fixed(std::size_t count, std::size_t stride, const doub
 }
 
 void bernstein_parameter_batch(int n, std::size_t count, std::size_t stride, const double* z, double* t) {
-  if (n < 2) return;
-  dispatch_size<kMaxBatchSize>("bernstein_parameter", n, [&](auto size) {
-    if constexpr (decltype(size)::value >= 2) bernstein_parameter_fixed<decltype(size)::value>(count, stride, z, t);
+  dispatch_size<kBernsteinParameterMinSize, kBernsteinParameterMaxSize>("bernstein_parameter", n, [&](auto size) {
+    bernstein_parameter_fixed<decltype(size)::value>(count, stride, z, t);
   });
 }
 

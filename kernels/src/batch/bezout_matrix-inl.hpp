@@ -18,6 +18,7 @@
 #include <cstddef>
 
 #include "batch/matrix_source-inl.hpp"
+#include "batch/sizes-inl.hpp"
 #include "batch/wide-inl.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -62,6 +63,7 @@ void bezout_matrix_groups(int n, std::size_t count, std::size_t stride, const So
 void bezout_matrix_batch(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
                          const double* By, const double* Bxy, const double* u, const double* v, double* B,
                          double* poison) {
+  check_size<kBezoutMatrixMinSize, kBezoutMatrixMaxSize>("bezout_matrix", n);
   if (Bxy == nullptr) return bezout_matrix_groups(n, count, stride, BezoutMatrices<false>{B0, Bx, By, Bxy, u, v, poison}, B);
   bezout_matrix_groups(n, count, stride, BezoutMatrices<true>{B0, Bx, By, Bxy, u, v, poison}, B);
 }

@@ -17,9 +17,10 @@ namespace bezinv::kernels {
 
 namespace batch {
 
-void size_out_of_range(const char* kernel, int n, int max_size) {
-  throw std::out_of_range(std::string("bezinv kernels: ") + kernel + " is compiled for n = 1.." +
-                          std::to_string(max_size) + ", called with n = " + std::to_string(n));
+void size_out_of_range(const char* kernel, int n, int min_size, int max_size) {
+  throw std::out_of_range(std::string("bezinv kernels: ") + kernel + " is compiled for n = " +
+                          std::to_string(min_size) + ".." + std::to_string(max_size) + ", called with n = " +
+                          std::to_string(n));
 }
 
 }  // namespace batch

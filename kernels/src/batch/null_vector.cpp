@@ -15,7 +15,7 @@ namespace bezinv::kernels::HWY_NAMESPACE {
 
 void null_vector_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z, double* defect,
                        double* estimate, double* second) {
-  dispatch_size<kMaxBatchSize>("null_vector", n, [&](auto size) {
+  dispatch_size<kNullVectorMinSize, kNullVectorMaxSize>("null_vector", n, [&](auto size) {
     null_vector_fixed<decltype(size)::value, true>(count, stride, StoredMatrices{B}, z, defect, estimate, second);
   });
 }

@@ -2,8 +2,8 @@
 // without pivoting, no gap; at n = 3 the adjugate, batch/adjugate_null_vector-inl.hpp):
 // null_vector_seed on stored matrices, and bezout_null_vector_seed on Bezout matrices it forms
 // itself (batch/matrix_source-inl.hpp). Both in this one translation unit, so that the
-// factorizations and solves they share are compiled once (two units took 62 + 72 s at -O3); the
-// file is compiled without contraction, as bezout_matrix.cpp is, so that the entries the second
+// factorizations and solves of the sizes they share are compiled once; the file is compiled
+// without contraction, as bezout_matrix.cpp is, so that the entries the second
 // forms are that kernel's bits (the seed's own arithmetic is written with explicit fused
 // multiply-adds, so contraction changes nothing else). null_vector.cpp exports the pivoted kernel.
 #include "batch/targets.hpp"
@@ -22,27 +22,34 @@ HWY_BEFORE_NAMESPACE();
 namespace bezinv::kernels::HWY_NAMESPACE {
 
 // The seed of every lane's matrix from `source` (matrix_source-inl.hpp): the adjugate at n = 3,
-// L D L^T without pivoting otherwise.
-template <class Source>
-void seed(int n, std::size_t count, std::size_t stride, const Source& source, double* z, double* defect,
-          double* residual) {
-  if (n == 3) return adjugate::seed<kWideVectors<3>>(count, stride, source, z, defect, residual);
-  dispatch_size<kMaxBatchSize>("null_vector_seed", n, [&](auto size) {
-    null_vector_fixed<decltype(size)::value, false>(count, stride, source, z, defect, residual, nullptr);
-  });
+// L D L^T without pivoting above.
+template <int N, class Source>
+void seed(std::size_t count, std::size_t stride, const Source& source, double* z, double* defect, double* residual) {
+  if constexpr (N == 3)
+    adjugate::seed<kWideVectors<3>>(count, stride, source, z, defect, residual);
+  else
+    null_vector_fixed<N, false>(count, stride, source, z, defect, residual, nullptr);
 }
 
 void null_vector_seed_batch(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                             double* defect, double* residual) {
-  seed(n, count, stride, StoredMatrices{B}, z, defect, residual);
+  dispatch_size<kNullVectorSeedMinSize, kNullVectorSeedMaxSize>("null_vector_seed", n, [&](auto size) {
+    seed<decltype(size)::value>(count, stride, StoredMatrices{B}, z, defect, residual);
+  });
 }
 
 void bezout_null_vector_seed_batch(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
                                    const double* By, const double* Bxy, const double* u, const double* v, double* z,
                                    double* defect, double* residual, double* poison) {
-  // One denominator (Bxy null): B is affine in (u, v), see matrix_source-inl.hpp.
-  if (Bxy == nullptr) return seed(n, count, stride, BezoutMatrices<false>{B0, Bx, By, Bxy, u, v, poison}, z, defect, residual);
-  seed(n, count, stride, BezoutMatrices<true>{B0, Bx, By, Bxy, u, v, poison}, z, defect, residual);
+  dispatch_size<kBezoutNullVectorSeedMinSize, kBezoutNullVectorSeedMaxSize>(
+      "bezout_null_vector_seed", n, [&](auto size) {
+        constexpr int N = decltype(size)::value;
+        // One denominator (Bxy null): B is affine in (u, v), see matrix_source-inl.hpp.
+        if (Bxy == nullptr)
+          seed<N>(count, stride, BezoutMatrices<false>{B0, Bx, By, Bxy, u, v, poison}, z, defect, residual);
+        else
+          seed<N>(count, stride, BezoutMatrices<true>{B0, Bx, By, Bxy, u, v, poison}, z, defect, residual);
+      });
 }
 
 }  // namespace bezinv::kernels::HWY_NAMESPACE

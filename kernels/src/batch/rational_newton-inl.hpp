@@ -307,7 +307,7 @@ void rational_newton_fixed(const RationalCurve& curve, const NewtonSettings& set
 void rational_newton_batch(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                            const double* u, const double* v, double* t, double* distance) {
   for (std::size_t l = 0; l < count; ++l) distance[l] = std::numeric_limits<double>::quiet_NaN();
-  dispatch_size<kMaxBatchSize>("rational_newton", curve.degree, [&](auto size) {
+  dispatch_size<kRationalNewtonMinDegree, kRationalNewtonMaxDegree>("rational_newton", curve.degree, [&](auto size) {
     rational_newton_fixed<decltype(size)::value>(curve, settings, count, u, v, t, distance);
   });
 }

@@ -148,7 +148,9 @@ void symmetric_svd_fixed(std::size_t count, std::size_t stride, const double* B,
 // The size is a template parameter so every loop bound is a constant (Ceres small_blas style).
 void symmetric_svd_batch(int n, std::size_t count, std::size_t stride, const double* B, double* sigma,
                          double* V) {
-  dispatch_size<kSymmetricSvdMaxSize>("symmetric_svd", n, [&](auto size) { symmetric_svd_fixed<decltype(size)::value>(count, stride, B, sigma, V); });
+  dispatch_size<kSymmetricSvdMinSize, kSymmetricSvdMaxSize>("symmetric_svd", n, [&](auto size) {
+    symmetric_svd_fixed<decltype(size)::value>(count, stride, B, sigma, V);
+  });
 }
 
 }  // namespace bezinv::kernels::HWY_NAMESPACE

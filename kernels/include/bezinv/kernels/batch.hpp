@@ -1,6 +1,9 @@
 #pragma once
-// Lane-batched kernels: many small symmetric n x n matrices at once, one matrix per SIMD lane.
-// The kernels know nothing about curves: they take matrices and return singular values and vectors.
+// Lane-batched numerical kernels, one problem per SIMD lane: small dense symmetric matrices (their
+// SVD, null vectors, Bezout matrices formed from coefficient matrices), the parameter read off a
+// vector in the Bernstein basis, and Newton's method on a quotient of polynomials in the Bernstein
+// basis. They know nothing of files, plans, tolerances' origins or statuses: the engine passes
+// numbers and decides what the results mean. docs/kernels.md says what each computes and why.
 //
 // Layout (structure of arrays). A batch holds `count` matrices padded to `stride` lanes
 // (stride = count rounded up to kBatchAlignment, padding lanes hold any finite values):
@@ -15,16 +18,31 @@
 
 namespace bezinv::kernels {
 
-inline constexpr int kMaxBatchSize = 32;    // largest n
-// Largest n of symmetric_svd: each size is compiled once per instruction set, so only those the
-// engine calls (above it, Eigen one matrix at a time is faster; engine/src/invert.cpp,
-// kLaneBatchedMaxDegree, asserts they agree). The other kernels take n up to kMaxBatchSize.
-// A kernel called with an n it was not compiled for throws std::out_of_range.
-inline constexpr int kSymmetricSvdMaxSize = 16;
+inline constexpr int kMaxBatchSize = 32;    // the largest n of any kernel
 inline constexpr int kBatchAlignment = 8;   // lanes per AVX-512 register of doubles; strides are multiples
 
-// A plane rational curve (x_num / x_den, y_num / y_den) of degree 1..kMaxBatchSize: four
-// polynomials in the Bernstein basis, degree + 1 coefficients each (see rational_newton).
+// The sizes each kernel is compiled for, n in [MinSize, MaxSize]: every size is one
+// instantiation per instruction set, so only the sizes the engine calls (engine/src/invert.cpp
+// asserts its thresholds against these). Any other n throws std::out_of_range naming the kernel
+// and its range.
+inline constexpr int kSymmetricSvdMinSize = 2;            // symmetric_svd (Eigen above the max)
+inline constexpr int kSymmetricSvdMaxSize = 16;
+inline constexpr int kNullVectorMinSize = 2;              // null_vector
+inline constexpr int kNullVectorMaxSize = kMaxBatchSize;
+inline constexpr int kNullVectorSeedMinSize = 3;          // null_vector_seed (n = 3: the adjugate)
+inline constexpr int kNullVectorSeedMaxSize = kMaxBatchSize;
+inline constexpr int kBezoutNullVectorSeedMinSize = 8;    // bezout_null_vector_seed
+inline constexpr int kBezoutNullVectorSeedMaxSize = kMaxBatchSize;
+inline constexpr int kBezoutMatrixMinSize = 2;            // bezout_matrix
+inline constexpr int kBezoutMatrixMaxSize = kMaxBatchSize;
+inline constexpr int kBernsteinParameterMinSize = 2;      // bernstein_parameter
+inline constexpr int kBernsteinParameterMaxSize = kMaxBatchSize;
+inline constexpr int kRationalNewtonMinDegree = 1;        // rational_newton: the curve's degree
+inline constexpr int kRationalNewtonMaxDegree = kMaxBatchSize;
+
+// The plane curve of rational_newton, (x_num / x_den, y_num / y_den): four polynomials in the
+// Bernstein basis of degree `degree` (kRationalNewtonMinDegree..kRationalNewtonMaxDegree),
+// degree + 1 coefficients each.
 struct RationalCurve {
   int degree;
   const double* x_num;
@@ -48,13 +66,13 @@ struct Implementation {
 
   // Singular value decomposition of every matrix of the batch (for symmetric B: its Jacobi
   // eigendecomposition; sigma = |lambda|, vectors = eigenvectors, both sorted by sigma descending).
-  // n <= kSymmetricSvdMaxSize.
+  // n in [kSymmetricSvdMinSize, kSymmetricSvdMaxSize].
   void (*symmetric_svd)(int n, std::size_t count, std::size_t stride, const double* B, double* sigma,
                         double* V);
 
-  // The fast path: the null vector of every (nearly) singular matrix by LU with partial pivoting
-  // and inverse iteration from (1, ..., 1) (every Bernstein basis vector is positive, so it always
-  // has a component along the null vector). Writes z (unit 2-norm) and, per lane, a quality
+  // The null vector of every (nearly) singular matrix by LU with partial pivoting and inverse
+  // iteration from (1, ..., 1) (every Bernstein basis vector is positive, so it always has a
+  // component along the null vector). n in [kNullVectorMinSize, kNullVectorMaxSize]. Writes z (unit 2-norm) and, per lane, a quality
   // estimate `defect[l]` >= 0: small when the iteration converged to the singular vector of a
   // simple smallest singular value (nullity 1, or a slightly regular matrix: how singular B is,
   // estimate[l] says); lanes whose defect exceeds the caller's threshold must be redone with
@@ -63,10 +81,10 @@ struct Implementation {
   // relative to ||B||_F:
   //   estimate[l]          ||B z|| / ||B||_F, an upper bound of sigma_n / ||B||_F;
   //   estimate[stride + l] 1 / ||B^-1 w|| after inverse iterations orthogonal to z: an estimate of
-  //                        sigma_{n-1} / ||B||_F from above (up to rounding, measured >= 0.998x;
-  //                        exact when w has converged, and the fixed start w has a generic component
-  //                        along every direction); +inf at n = 1.
-  // `second` (may be null; n >= 2; laid out like z) receives that deflated iterate, unit length
+  //                        sigma_{n-1} / ||B||_F from above (up to rounding; exact when w has
+  //                        converged, and the fixed start w has a generic component along every
+  //                        direction).
+  // `second` (may be null; laid out like z) receives that deflated iterate, unit length
   // and orthogonal to z: an approximation of the singular vector of sigma_{n-1}, so that z and
   // second span the near-null space when sigma_{n-1} is small too.
   void (*null_vector)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
@@ -77,12 +95,11 @@ struct Implementation {
   // swaps) and without the iterations orthogonal to z (no sigma_{n-1} estimate, no second
   // vector). Writes z (unit 2-norm), residual[l] = ||B z|| / ||B||_F and defect[l] = the chord
   // between the two iterates (null_vector's measure 1, over one step). Reads only B's lower
-  // triangle. Unpivoted, z may
-  // be poor after a small pivot (measured on Bezout matrices of on-curve points: small pivots
-  // occur, yet every seed refined to the true parameter; null_vector-inl.hpp, LaneLdl), and a
-  // settled z is not proof of a simple null vector: callers check what they make of it by other
-  // means (the engine's isolation certificate) and send the lanes they cannot settle to
-  // null_vector or symmetric_svd. 2-4.5x faster than null_vector (bench/kernels_bench.cpp).
+  // triangle. n in [kNullVectorSeedMinSize, kNullVectorSeedMaxSize].
+  // Unpivoted, z may be poor after a small pivot, and a settled z is not proof of a simple null
+  // vector: callers check what they make of it by other means (the engine's isolation
+  // certificate) and send the lanes they cannot settle to null_vector or symmetric_svd
+  // (docs/kernels.md, "The seed").
   // At n = 3, z is instead adj(B)^2 (1, 1, 1) normalised (the same two steps of inverse iteration,
   // without a factorization: adj(B) = det(B) B^-1), and the defect is the sine of the angle
   // between the two steps (batch/adjugate_null_vector-inl.hpp).
@@ -101,19 +118,21 @@ struct Implementation {
   // |P - P0 + P' s| of the distance before it; else measured before the last step where that
   // moved t by a few ulps). A lane the kernel does not settle (start not in [0, 1], or a distance that is not
   // finite or that the scalar code would compute with std::hypot) keeps its t and gets
-  // distance[l] = NaN: the caller runs the scalar code for it. Arrays have `count` entries.
+  // distance[l] = NaN: the caller runs the scalar code for it. Arrays have `count` entries;
+  // curve.degree in [kRationalNewtonMinDegree, kRationalNewtonMaxDegree].
   void (*rational_newton)(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                           const double* u, const double* v, double* t, double* distance);
 
-  // The paper's read-out (Marco & Martinez Sect. 3) for every lane's vector z (n >= 2 components,
-  // laid out as null_vector writes it): for z along the Bernstein basis (beta_0(t), ...,
+  // The paper's read-out (Marco & Martinez Sect. 3) for every lane's vector z (n components,
+  // laid out as null_vector writes it; n in [kBernsteinParameterMinSize, kBernsteinParameterMaxSize]): for z along the Bernstein basis (beta_0(t), ...,
   // beta_{n-1}(t)) of degree n-1, consecutive components give t = i z_i / (i z_i + (n-i) z_{i-1}),
   // taken at the largest component and the larger of its neighbours. NaN where that denominator is
   // 0. Writes t[0..count); the engine's parameter_from_null_vector gives the same bits.
   void (*bernstein_parameter)(int n, std::size_t count, std::size_t stride, const double* z, double* t);
 
-  // The Bezout matrix of every lane's point (u[l], v[l]) from the plan's coefficient matrices
-  // (n x n, row-major; engine/include/bezinv/plan.hpp): entry (r, c), r >= c, of lane l is
+  // The Bezout matrix of every lane's point (u[l], v[l]) from the coefficient matrices B0, Bx, By,
+  // Bxy (n x n, row-major, n in [kBezoutMatrixMinSize, kBezoutMatrixMaxSize]; the engine's
+  // InversionPlan holds them, engine/include/bezinv/plan.hpp): entry (r, c), r >= c, of lane l is
   //     B[(r * n + c) * stride + l] = ((B0 - u Bx) - v By) + (u v) Bxy   at index r * n + c,
   // or (B0 - u Bx) - v By when Bxy is null (one denominator W: Bxy = Bez(W, W) = 0, and B is
   // affine in (u, v)), in that order and without fused multiply-add, so every implementation
@@ -125,12 +144,13 @@ struct Implementation {
                         const double* By, const double* Bxy, const double* u, const double* v, double* B,
                         double* poison);
 
-  // null_vector_seed on the Bezout matrices of the points (u[l], v[l]), l < count, n >= 3, formed
-  // from the plan's coefficient matrices as bezout_matrix forms them, bit for bit, but in
+  // null_vector_seed on the Bezout matrices of the points (u[l], v[l]), l < count, formed from the
+  // coefficient matrices as bezout_matrix forms them, bit for bit, but in
   // registers and never stored: the same z, defect and residual as bezout_matrix followed by
-  // null_vector_seed, and the same poison (NaN for a lane whose B overflowed; its other outputs
-  // are then meaningless). At high degree a batch's B does not fit in L1, and reading it back was
-  // most of the seed's time. z, defect and residual are laid out as null_vector_seed's (stride).
+  // null_vector_seed (for the n both take), and the same poison (NaN for a lane whose B overflowed; its other outputs
+  // are then meaningless). At high degree a batch's B does not fit in L1, and reading it back
+  // would be most of the seed's time. z, defect and residual are laid out as null_vector_seed's
+  // (stride). n in [kBezoutNullVectorSeedMinSize, kBezoutNullVectorSeedMaxSize].
   void (*bezout_null_vector_seed)(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
                                   const double* By, const double* Bxy, const double* u, const double* v, double* z,
                                   double* defect, double* residual, double* poison);
