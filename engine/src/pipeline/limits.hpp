@@ -17,10 +17,22 @@ static_assert(kMaxDegree <= kernels::kMaxSize, "the single-matrix SVD must take 
 // The lane-batched Jacobi kernel is compiled for exactly the degrees it is given.
 static_assert(kLaneBatchedSvdMaxDegree == kernels::kSymmetricSvdMaxSize,
               "kernels::kSymmetricSvdMaxSize must be the largest n the engine gives the lane-batched SVD");
-// The fast path's kernels.
-static_assert(kFastPathMaxDegree <= kMaxDegree && kFastPathMaxDegree <= kernels::kMaxBatchSize,
-              "the fast path's kernels must take every degree it is used at");
-static_assert(kFormedBMinDegree >= 4 && kFormedBMinDegree <= kFastPathMaxDegree,
-              "the seed on stored B covers 4 .. kFormedBMinDegree - 1 (3 is the adjugate)");
+static_assert(kernels::kSymmetricSvdMinSize <= 2, "the SVD path runs from degree 2");
+static_assert(kernels::kBezoutMatrixMinSize <= 2 && kernels::kBezoutMatrixMaxSize >= kMaxDegree,
+              "B is formed by the kernel at every degree from 2");
+static_assert(kernels::kBernsteinParameterMinSize <= 2 && kernels::kBernsteinParameterMaxSize >= kMaxDegree,
+              "t is read out by the kernel at every degree from 2");
+// The fast path's kernels: degree 2 the pivoted kernel alone, 3 .. kFormedBMinDegree - 1 the seed
+// on stored B, from kFormedBMinDegree the seed forming B; the gap pass and the refinement at all.
+static_assert(kFastPathMaxDegree <= kMaxDegree, "the fast path runs at degrees bezinv accepts");
+static_assert(kernels::kNullVectorMinSize <= 2 && kernels::kNullVectorMaxSize >= kFastPathMaxDegree,
+              "the pivoted kernel (degree 2, the gap pass) must take every fast-path degree");
+static_assert(kernels::kNullVectorSeedMinSize <= 3 && kernels::kNullVectorSeedMaxSize >= kFormedBMinDegree - 1,
+              "the seed on stored B must take 3 .. kFormedBMinDegree - 1");
+static_assert(kernels::kBezoutNullVectorSeedMinSize <= kFormedBMinDegree &&
+                  kernels::kBezoutNullVectorSeedMaxSize >= kFastPathMaxDegree,
+              "the seed forming B must take kFormedBMinDegree .. kFastPathMaxDegree");
+static_assert(kernels::kRationalNewtonMinDegree <= 2 && kernels::kRationalNewtonMaxDegree >= kFastPathMaxDegree,
+              "the lane-batched refinement must take every fast-path degree");
 
 }  // namespace bezinv::detail

@@ -22,7 +22,7 @@ inline constexpr int kMaxBatchSize = 32;    // the largest n of any kernel
 inline constexpr int kBatchAlignment = 8;   // lanes per AVX-512 register of doubles; strides are multiples
 
 // The sizes each kernel is compiled for, n in [MinSize, MaxSize]: every size is one
-// instantiation per instruction set, so only the sizes the engine calls (engine/src/invert.cpp
+// instantiation per instruction set, so only the sizes the engine calls (engine/src/pipeline/limits.hpp
 // asserts its thresholds against these). Any other n throws std::out_of_range naming the kernel
 // and its range.
 inline constexpr int kSymmetricSvdMinSize = 2;            // symmetric_svd (Eigen above the max)
