@@ -30,7 +30,9 @@
 
 #include <hwy/highway.h>
 
+#include <algorithm>
 #include <cstddef>
+#include <vector>
 
 #include "batch/matrix_source-inl.hpp"
 #include "batch/wide-inl.hpp"
@@ -136,17 +138,30 @@ HWY_NOINLINE void seed_group(D d, std::size_t stride, std::size_t first, std::si
   }
 }
 
-// Lanes per group: as null_vector_fixed (kWideVectors<3>, 4 vectors on the SIMD targets) while the
-// batch has them; each lane computes the same numbers either way.
+// Lanes per group: as null_vector_fixed (kWideVectors<3>, 4 vectors on the SIMD targets), the last
+// group too (copied into a batch of its own where a stored batch's rows end before it); each lane
+// computes the same numbers whatever the group.
 template <int G, class Source>
 void seed(std::size_t count, std::size_t stride, const Source& B, double* z, double* defect, double* residual) {
   using Wide = wide::Tag<G>;
-  constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(wide::Tag<1>());
+  constexpr std::size_t LW = wide::MaxLanes(Wide());
+  constexpr bool kPastTheRows = !GroupMatrix<Source, Wide>::kFormed;
   std::size_t first = 0;
-  for (; first < count && first + LW <= stride; first += LW)
+  for (; first < count && (!kPastTheRows || first + LW <= stride); first += LW)
     seed_group(Wide(), stride, first, std::min(LW, count - first), B, z, defect, residual);
-  for (; first < count; first += L1)
-    seed_group(wide::Tag<1>(), stride, first, std::min(L1, count - first), B, z, defect, residual);
+  if constexpr (kPastTheRows) {
+    if (first >= count) return;
+    const std::size_t lanes = count - first;
+    std::vector<double> padded(9 * LW, 0.0), z_lanes(3 * LW), defect_lanes(LW), residual_lanes(LW);
+    for (std::size_t i = 0; i < 9; ++i) std::copy_n(B.B + i * stride + first, lanes, padded.data() + i * LW);
+    seed_group(Wide(), LW, 0, lanes, StoredMatrices{padded.data()}, z_lanes.data(), defect_lanes.data(),
+               residual_lanes.data());
+    for (std::size_t l = 0; l < lanes; ++l) {
+      defect[first + l] = defect_lanes[l];
+      residual[first + l] = residual_lanes[l];
+      for (std::size_t r = 0; r < 3; ++r) z[r * stride + first + l] = z_lanes[r * LW + l];
+    }
+  }
 }
 
 }  // namespace adjugate
