@@ -4,16 +4,14 @@
 //
 // Why. adj(B) B = det(B) I, so for B of rank 2 every nonzero column of adj(B) spans the null
 // space, and for regular B, adj(B) = det(B) B^-1: multiplying by it is one step of inverse
-// iteration without a factorization or a division. Against the L D L^T seed with three solves at
-// this size: 298M against 170M matrices/s on AVX-512, 105M against 88M on AVX2
-// (BM_KernelNullVectorSeed/n:3, best of 5 alternating runs).
+// iteration without a factorization or a division, faster than the L D L^T seed at this size
+// (docs/kernels.md).
 //
 // What it computes, per lane, on B normalised to ||B||_F = 1:
 //   x = adj(B) (1, 1, 1), the L D L^T seed's start: every Bernstein basis vector is positive, so
 //       for rank 2, where adj(B) = +-sigma_1 sigma_2 z z^T, x = +-sigma_1 sigma_2 (z . 1) z is far
 //       from 0. (Starting from the largest column of adj(B) instead, the settling measure below
-//       was 2-10x larger on points off the curve, and twice as many of them missed the engine's
-//       gate at noise 1e-4: the degree-3 pipeline ran at 0.48x there.)
+//       is much larger on points off the curve, and twice as many of them miss the engine's gate.)
 //   z = adj(B) x / ||adj(B) x||, a second step, so that the angle between x and z measures how
 //       far the iteration is from settling, as the L D L^T seed's two iterates do (for regular B
 //       it shrinks with sigma_3 / sigma_2; rank 2 leaves rounding);
