@@ -4,16 +4,14 @@
 //
 // Why. adj(B) B = det(B) I, so for B of rank 2 every nonzero column of adj(B) spans the null
 // space, and for regular B, adj(B) = det(B) B^-1: multiplying by it is one step of inverse
-// iteration without a factorization or a division. Against the L D L^T seed with three solves at
-// this size: 298M against 170M matrices/s on AVX-512, 105M against 88M on AVX2
-// (BM_KernelNullVectorSeed/n:3, best of 5 alternating runs).
+// iteration without a factorization or a division, faster than the L D L^T seed at this size
+// (docs/kernels.md).
 //
 // What it computes, per lane, on B normalised to ||B||_F = 1:
 //   x = adj(B) (1, 1, 1), the L D L^T seed's start: every Bernstein basis vector is positive, so
 //       for rank 2, where adj(B) = +-sigma_1 sigma_2 z z^T, x = +-sigma_1 sigma_2 (z . 1) z is far
 //       from 0. (Starting from the largest column of adj(B) instead, the settling measure below
-//       was 2-10x larger on points off the curve, and twice as many of them missed the engine's
-//       gate at noise 1e-4: the degree-3 pipeline ran at 0.48x there.)
+//       is much larger on points off the curve, and twice as many of them miss the engine's gate.)
 //   z = adj(B) x / ||adj(B) x||, a second step, so that the angle between x and z measures how
 //       far the iteration is from settling, as the L D L^T seed's two iterates do (for regular B
 //       it shrinks with sigma_3 / sigma_2; rank 2 leaves rounding);
@@ -30,7 +28,9 @@
 
 #include <hwy/highway.h>
 
+#include <algorithm>
 #include <cstddef>
+#include <vector>
 
 #include "batch/matrix_source-inl.hpp"
 #include "batch/wide-inl.hpp"
@@ -136,17 +136,30 @@ HWY_NOINLINE void seed_group(D d, std::size_t stride, std::size_t first, std::si
   }
 }
 
-// Lanes per group: as null_vector_fixed (kWideVectors<3>, 4 vectors on the SIMD targets) while the
-// batch has them; each lane computes the same numbers either way.
+// Lanes per group: as null_vector_fixed (kWideVectors<3>, 4 vectors on the SIMD targets), the last
+// group too (copied into a batch of its own where a stored batch's rows end before it); each lane
+// computes the same numbers whatever the group.
 template <int G, class Source>
 void seed(std::size_t count, std::size_t stride, const Source& B, double* z, double* defect, double* residual) {
   using Wide = wide::Tag<G>;
-  constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(wide::Tag<1>());
+  constexpr std::size_t LW = wide::MaxLanes(Wide());
+  constexpr bool kPastTheRows = !GroupMatrix<Source, Wide>::kFormed;
   std::size_t first = 0;
-  for (; first < count && first + LW <= stride; first += LW)
+  for (; first < count && (!kPastTheRows || first + LW <= stride); first += LW)
     seed_group(Wide(), stride, first, std::min(LW, count - first), B, z, defect, residual);
-  for (; first < count; first += L1)
-    seed_group(wide::Tag<1>(), stride, first, std::min(L1, count - first), B, z, defect, residual);
+  if constexpr (kPastTheRows) {
+    if (first >= count) return;
+    const std::size_t lanes = count - first;
+    std::vector<double> padded(9 * LW, 0.0), z_lanes(3 * LW), defect_lanes(LW), residual_lanes(LW);
+    for (std::size_t i = 0; i < 9; ++i) std::copy_n(B.B + i * stride + first, lanes, padded.data() + i * LW);
+    seed_group(Wide(), LW, 0, lanes, StoredMatrices{padded.data()}, z_lanes.data(), defect_lanes.data(),
+               residual_lanes.data());
+    for (std::size_t l = 0; l < lanes; ++l) {
+      defect[first + l] = defect_lanes[l];
+      residual[first + l] = residual_lanes[l];
+      for (std::size_t r = 0; r < 3; ++r) z[r * stride + first + l] = z_lanes[r * LW + l];
+    }
+  }
 }
 
 }  // namespace adjugate

@@ -25,10 +25,9 @@ inline constexpr int kInverseIterations = 3;
 // measure only spares the refinement lanes whose z has not converged.
 inline constexpr int kSeedInverseIterations = 2;
 // Inverse iterations orthogonal to the null vector, estimating 1 / sigma_{n-1} (the defect, and the
-// engine's gate for answering without an SVD). They converge at the rate sigma_{n-1}/sigma_{n-2}:
-// with 2 the estimate of sigma_{n-1} was up to 61x too high on the Bezout matrix of a degree-14
-// curve; with 8, at most 1.6x on the random spectra of tests/kernels/batch_kernels_test.cpp, and
-// 1.44x once the last two iterates give a Ritz value (null_vector-inl.hpp, ritz_growth). Each costs
+// engine's gate for answering without an SVD). They converge at the rate sigma_{n-1}/sigma_{n-2},
+// so 2 can leave the estimate far too high; 8, with the Ritz value of the last two iterates
+// (gap_estimate-inl.hpp), keep it within the engine's factor of 2 (docs/kernels.md). Each costs
 // n^2, against n^3/3 for the factorization.
 inline constexpr int kDeflatedIterations = 8;
 // Except for n <= 3: the deflated space (orthogonal to z) then has dimension n - 1 <= 2, so the

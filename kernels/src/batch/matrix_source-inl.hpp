@@ -34,11 +34,10 @@ struct StoredMatrices {
 //   affine (one denominator W)          (B0[i] - u Bx[i]) - v By[i]
 // With one denominator Bxy = Bez(W, W) = 0, so the affine form drops a multiplication, an
 // addition and a broadcast load per entry that would add 0: a third of forming B, which the seed
-// does twice per lane (measured: the formed seed 1.1-1.2x at n = 8-20, BENCHMARKS.md).
+// does twice per lane.
 // The kernel writes poison[l] = the sum of the lane's entries times 0.
 // Why form B at all: at high degree a batch's B no longer fits in L1 (n = 20: 107 KB for 64
-// lanes), and the seed kernel spent most of its time reading it back from L2 (perf), after the
-// form-B stage had spent its own time storing it.
+// lanes), and reading it back from L2 would be most of the seed's time (docs/kernels.md).
 template <bool kBilinear>
 struct BezoutMatrices {
   const double *B0, *Bx, *By, *Bxy;  // Bxy unused (may be null) unless kBilinear

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <type_traits>
+#include <vector>
 
 #include "batch/constants.hpp"
 #include "batch/gap_estimate-inl.hpp"
@@ -179,26 +180,49 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
   }
 }
 
-// Lanes per group: kWideVectors<N> SIMD vectors side by side where the batch has them, whose
-// dependency chains overlap, one vector for the rest; each lane computes the same numbers either
-// way. Wide on the SIMD targets up to n = 24 only: beyond, the registers run out and a wide group
-// is slower (docs/kernels.md, "Wide groups").
+// Lanes per group: kWideVectors<N> SIMD vectors side by side, whose dependency chains overlap; each
+// lane computes the same numbers whatever the group. Wide on the SIMD targets up to n = 24 only:
+// beyond, the registers run out and a wide group is slower (docs/kernels.md, "Wide groups").
 template <int N>
 inline constexpr int kWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128 || N > 24) ? 1
                                     : N <= 8                                                        ? 4
                                                                                                     : 2;
 
+// Every group has the same width, the last one too: one instantiation of the kernel per size and
+// instruction set. A stored batch's last group may reach past the rows (a stride that is not a
+// multiple of the group's lanes; never the engine's batches): its lanes are then copied into a
+// batch of their own, zeros after them, and its outputs copied back. (Formed matrices pad
+// themselves, matrix_source-inl.hpp.)
 template <int N, bool kGap, class Source>
 void null_vector_fixed(std::size_t count, std::size_t stride, const Source& B, double* z, double* defect,
                        double* estimate, double* second) {
   using Wide = wide::Tag<kWideVectors<N>>;
-  constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(wide::Tag<1>());
+  constexpr std::size_t LW = wide::MaxLanes(Wide());
+  constexpr bool kPastTheRows = !GroupMatrix<Source, Wide>::kFormed;
   std::size_t first = 0;
-  for (; first < count && first + LW <= stride; first += LW)  // whole wide groups inside the rows
+  for (; first < count && (!kPastTheRows || first + LW <= stride); first += LW)
     null_vector_group<N, kGap>(Wide(), stride, first, std::min(LW, count - first), B, z, defect, estimate, second);
-  for (; first < count; first += L1)
-    null_vector_group<N, kGap>(wide::Tag<1>(), stride, first, std::min(L1, count - first), B, z, defect, estimate,
-                               second);
+  if constexpr (kPastTheRows) {
+    if (first >= count) return;
+    const std::size_t lanes = count - first;
+    std::vector<double> padded(N * N * LW, 0.0), z_lanes(N * LW), defect_lanes(LW), estimate_lanes(2 * LW),
+        second_lanes(N * LW);
+    for (std::size_t i = 0; i < N * N; ++i) std::copy_n(B.B + i * stride + first, lanes, padded.data() + i * LW);
+    null_vector_group<N, kGap>(Wide(), LW, 0, lanes, StoredMatrices{padded.data()}, z_lanes.data(),
+                               defect_lanes.data(), estimate ? estimate_lanes.data() : nullptr,
+                               second ? second_lanes.data() : nullptr);
+    for (std::size_t l = 0; l < lanes; ++l) {
+      defect[first + l] = defect_lanes[l];
+      if (estimate) {
+        estimate[first + l] = estimate_lanes[l];
+        if constexpr (kGap) estimate[stride + first + l] = estimate_lanes[LW + l];
+      }
+      for (std::size_t r = 0; r < N; ++r) {
+        z[r * stride + first + l] = z_lanes[r * LW + l];
+        if (second) second[r * stride + first + l] = second_lanes[r * LW + l];
+      }
+    }
+  }
 }
 
 }  // namespace bezinv::kernels::HWY_NAMESPACE

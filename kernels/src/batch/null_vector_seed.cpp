@@ -1,5 +1,5 @@
 // Compiles batch/null_vector-inl.hpp once per instruction set and exports the seed kernels (L D L^T
-// without pivoting, no gap; at n = 3 the adjugate, batch/adjugate_null_vector-inl.hpp):
+// without pivoting, batch/ldlt-inl.hpp, no gap; at n = 3 the adjugate, adjugate_null_vector-inl.hpp):
 // null_vector_seed on stored matrices, and bezout_null_vector_seed on Bezout matrices it forms
 // itself (batch/matrix_source-inl.hpp). Both in this one translation unit, so that the
 // factorizations and solves of the sizes they share are compiled once; the file is compiled

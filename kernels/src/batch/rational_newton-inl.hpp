@@ -1,6 +1,7 @@
-// Lane-batched Newton's method for the nearest point of a plane rational curve, one point per lane
-// (bezinv/kernels/batch.hpp, Implementation::rational_newton). Re-included once per instruction set
-// by hwy/foreach_target.h (see rational_newton.cpp).
+// Lane-batched Newton's method for the nearest point of a plane curve given as quotients of
+// polynomials in the Bernstein basis, one point per lane (bezinv/kernels/batch.hpp,
+// Implementation::rational_newton). Re-included once per instruction set by hwy/foreach_target.h
+// (see rational_newton.cpp).
 //
 // Every lane runs the same operations, in the same order, as the engine's scalar refinement
 // (engine/src/refine.cpp: de Casteljau on the four polynomials, the jet read off the last three
@@ -33,9 +34,8 @@ namespace hn = wide;
 
 // `Steps` rounds of de Casteljau, f_i <- (1 - t) f_i + t f_{i+1}, on the coefficients f = c[0..N]
 // of one polynomial at one t per lane of a native vector; out[k] = the f_k left over, k < Count.
-// Written out (every loop unrolled) so that f lives in registers: with the loops rolled GCC kept
-// the four polynomials' f on the stack, every update a store and a reload (measured: the whole
-// pipeline 6-14% faster at n = 5..20, same bits).
+// Written out (every loop unrolled) so that f lives in registers: with the loops rolled GCC keeps
+// the four polynomials' f on the stack, every update a store and a reload.
 template <int N, int Steps, int Count, class DN>
 HWY_INLINE void de_casteljau_inline(DN d, const double* HWY_RESTRICT c, hwy::HWY_NAMESPACE::Vec<DN> t,
                                     hwy::HWY_NAMESPACE::Vec<DN>* HWY_RESTRICT out) {
@@ -53,9 +53,8 @@ HWY_INLINE void de_casteljau_inline(DN d, const double* HWY_RESTRICT c, hwy::HWY
   for (int k = 0; k < Count; ++k) out[k] = f[k];
 }
 
-// The same, not inlined: one copy per size instead of one per call site and group width. Written
-// out and inlined at every size, this file took 3.5 min to compile instead of 1.2 (CI's budget);
-// inlined only up to n = 4, 1.0.
+// The same, not inlined: one copy per size instead of one per call site and group width (inlined
+// at every size, the copies multiply this file's compile time; docs/kernels.md).
 template <int N, int Steps, int Count, class DN>
 HWY_NOINLINE void de_casteljau_native(DN d, const double* HWY_RESTRICT c, hwy::HWY_NAMESPACE::Vec<DN> t,
                                       hwy::HWY_NAMESPACE::Vec<DN>* HWY_RESTRICT out) {
@@ -68,7 +67,7 @@ HWY_INLINE void de_casteljau(D, const double* HWY_RESTRICT c, const hn::Vec<D>& 
   using DN = typename D::D;
   for (int g = 0; g < D::kVectors; ++g) {
     hwy::HWY_NAMESPACE::Vec<DN> f[Count];
-    if constexpr (N <= 4)  // the call would cost more than these few steps (n = 3: 18% of the kernel)
+    if constexpr (N <= 4)  // the call would cost more than these few steps
       de_casteljau_inline<N, Steps, Count>(DN(), c, t.v[g], f);
     else
       de_casteljau_native<N, Steps, Count>(DN(), c, t.v[g], f);
@@ -283,13 +282,10 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
   }
 }
 
-// Lanes per group: kNewtonWideVectors SIMD vectors side by side while the batch has that many
-// lanes left (their dependency chains overlap), one vector for the rest; each lane computes the
-// same numbers either way. Measured with `bezinv profile` (refine stage, 1 thread, AVX-512),
-// 1 -> 2 -> 4 vectors: n = 3 40M -> 43M -> 37M, n = 8 6.9M -> 7.7M -> 6.1M points/s (a group
-// iterates as long as its slowest lane, so wider groups idle more).
-// SIMD targets and n <= 24 only (each wide size is one more instantiation per target; compile
-// time is CI's budget).
+// Lanes per group: kNewtonWideVectors SIMD vectors side by side (their dependency chains overlap),
+// the last group too, with padding lanes that start inactive; each lane computes the same numbers
+// whatever the group. Two, not four: a group iterates as long as its slowest lane, so wider groups
+// idle more (docs/kernels.md, "Wide groups"). SIMD targets and n <= 24 only, as null_vector's.
 template <int N>
 inline constexpr int kNewtonWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128 || N > 24) ? 1 : 2;
 
@@ -297,11 +293,9 @@ template <int N>
 void rational_newton_fixed(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                            const double* u, const double* v, double* t, double* distance) {
   using Wide = wide::Tag<kNewtonWideVectors<N>>;
-  constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(wide::Tag<1>());
-  std::size_t first = 0;
-  for (; first + LW <= count; first += LW) rational_newton_group<N>(Wide(), curve, settings, first, LW, u, v, t, distance);
-  for (; first < count; first += L1)
-    rational_newton_group<N>(wide::Tag<1>(), curve, settings, first, std::min(L1, count - first), u, v, t, distance);
+  constexpr std::size_t LW = wide::MaxLanes(Wide());
+  for (std::size_t first = 0; first < count; first += LW)
+    rational_newton_group<N>(Wide(), curve, settings, first, std::min(LW, count - first), u, v, t, distance);
 }
 
 void rational_newton_batch(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,

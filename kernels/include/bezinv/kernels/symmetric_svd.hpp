@@ -1,6 +1,6 @@
 #pragma once
-// Singular value decomposition of a small dense symmetric matrix.
-// The kernels know nothing about curves: they take matrices and return singular values and vectors.
+// Singular value decomposition of a small dense symmetric matrix, one at a time (Eigen): the
+// engine's SVD above the sizes of the lane-batched one (bezinv/kernels/batch.hpp).
 //
 // For symmetric B = Q diag(lambda) Q^T, the SVD is B = Q diag(|lambda|) (Q diag(sign lambda))^T, so
 // the singular values are |lambda| and the right singular vectors are the eigenvectors. The
