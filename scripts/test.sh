@@ -12,7 +12,7 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF -DBEZINV_BU
 cmake --build build -j"$jobs"
 (cd build && ctest --output-on-failure --no-tests=error -j"$jobs")
 
-# -O1 -g1: enough for the sanitizers, and quicker to compile than -O2 -g (CI has 15 minutes).
+# -O1 -g1: enough for the sanitizers, and quicker to compile than -O2 -g.
 # Kernels for scalar and this machine's instruction set only: the Release tree above checks every
 # one, and the sanitizers look at the code paths, which are the same on each.
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DBEZINV_SANITIZE=ON -DBEZINV_BUILD_TESTS=ON -DBEZINV_BUILD_BENCH=OFF -DBEZINV_KERNEL_TARGETS=native >/dev/null
