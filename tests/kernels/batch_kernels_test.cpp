@@ -3,7 +3,7 @@
 // Eigen::JacobiSVD per lane, or matrices built as B = Q diag(sigma) Q^T with known sigma and Q.
 #include <gtest/gtest.h>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -17,6 +17,7 @@
 #include "bezinv/kernels/batch.hpp"
 #include "bezinv/kernels/detail/batch_selection.hpp"
 #include "support/measure.hpp"
+#include "support/reference_linear_algebra.hpp"
 
 namespace bezinv::kernels {
 namespace {
@@ -38,14 +39,6 @@ Dense random_symmetric(int n, std::mt19937_64& rng) {
   return b;
 }
 
-Dense random_orthogonal(int n, std::mt19937_64& rng) {
-  std::normal_distribution<double> g;
-  Dense a(n, n);
-  for (int r = 0; r < n; ++r)
-    for (int c = 0; c < n; ++c) a(r, c) = g(rng);
-  return Eigen::HouseholderQR<Dense>(a).householderQ() * Dense::Identity(n, n);
-}
-
 // Q diag(sigma) Q^T with sigma_k = 0 for the last `nullity` k and the others in [0.1, 1]. The
 // null space is spanned by the last `nullity` columns of Q (up to rounding of the product).
 struct Constructed {
@@ -53,7 +46,7 @@ struct Constructed {
 };
 Constructed with_nullity(int n, int nullity, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0.1, 1.0);
-  Dense q = random_orthogonal(n, rng);
+  Dense q = test_support::random_orthogonal(n, rng);
   Eigen::VectorXd sigma(n);
   for (int k = 0; k < n; ++k) sigma(k) = k < n - nullity ? u(rng) * (rng() % 2 ? 1.0 : -1.0) : 0.0;
   Dense b = q * sigma.asDiagonal() * q.transpose();
@@ -91,10 +84,10 @@ struct Batch {
       impl.symmetric_svd(n, count, stride, B.data(), sigma.data(), V.data());
     } else {
       for (std::size_t l = 0; l < count; ++l) {
-        const Eigen::JacobiSVD<Dense> svd(matrices[l], Eigen::ComputeFullV);
+        const test_support::ReferenceSvd svd = test_support::reference_svd(matrices[l]);
         for (int k = 0; k < n; ++k) {
-          sigma[k * stride + l] = svd.singularValues()(k);
-          for (int r = 0; r < n; ++r) V[(k * n + r) * stride + l] = svd.matrixV()(r, k);
+          sigma[k * stride + l] = svd.sigma(k);
+          for (int r = 0; r < n; ++r) V[(k * n + r) * stride + l] = svd.V(r, k);
         }
       }
     }
@@ -211,8 +204,8 @@ TEST(BatchSymmetricSvd, MatchesEigenJacobiSvdAndEachOther) {
         batch.run(*impl);
         batch.expect_padding_untouched();
         for (std::size_t l = 0; l < count; ++l) {
-          const Eigen::JacobiSVD<Dense> svd(matrices[l], Eigen::ComputeFullV);
-          const auto& s = svd.singularValues();
+          const test_support::ReferenceSvd svd = test_support::reference_svd(matrices[l]);
+          const auto& s = svd.sigma;
           for (int k = 0; k < n; ++k) {
             const double err = std::abs(batch.s(l, k) - s(k)) / s(0);
             worst_sigma = std::max(worst_sigma, err);
@@ -220,7 +213,7 @@ TEST(BatchSymmetricSvd, MatchesEigenJacobiSvdAndEachOther) {
             // Vectors are only determined up to sign, and only when separated from their neighbours.
             const double gap = std::min(k > 0 ? s(k - 1) - s(k) : s(0), k + 1 < n ? s(k) - s(k + 1) : s(0));
             if (gap < 1e-3 * s(0)) continue;
-            const double angle = 1 - abs_cos(batch.v(l, k), svd.matrixV().col(k));
+            const double angle = 1 - abs_cos(batch.v(l, k), svd.V.col(k));
             worst_vector = std::max(worst_vector, angle);
             ASSERT_LE(angle, 1e-12) << "lane " << l << " k " << k;
             ASSERT_NEAR(batch.v(l, k).norm(), 1.0, 1e-14);
@@ -472,7 +465,7 @@ TEST(BatchSymmetricSvd, SmallestVectorWithSmallGap) {
     std::vector<Dense> matrices;
     for (std::size_t l = 0; l < 9; ++l) {
       std::uniform_real_distribution<double> u(0.1, 1.0);
-      const Dense q = random_orthogonal(n, rng);
+      const Dense q = test_support::random_orthogonal(n, rng);
       Eigen::VectorXd sigma(n);
       for (int k = 0; k < n; ++k) sigma(k) = u(rng);
       sigma(0) = 1.0;
@@ -487,9 +480,9 @@ TEST(BatchSymmetricSvd, SmallestVectorWithSmallGap) {
       Batch batch(matrices, junk);
       batch.run(*impl);
       for (std::size_t l = 0; l < matrices.size(); ++l) {
-        const Eigen::JacobiSVD<Dense> svd(matrices[l], Eigen::ComputeFullV);
-        EXPECT_GE(abs_cos(batch.v(l, n - 1), svd.matrixV().col(n - 1)), 1 - 1e-12) << "lane " << l;
-        EXPECT_GE(abs_cos(batch.null(l), svd.matrixV().col(n - 1)), 1 - 1e-12) << "lane " << l;
+        const test_support::ReferenceSvd svd = test_support::reference_svd(matrices[l]);
+        EXPECT_GE(abs_cos(batch.v(l, n - 1), svd.V.col(n - 1)), 1 - 1e-12) << "lane " << l;
+        EXPECT_GE(abs_cos(batch.null(l), svd.V.col(n - 1)), 1 - 1e-12) << "lane " << l;
       }
     }
   }

@@ -5,7 +5,7 @@
 // says; and bezout_matrix's poison.
 #include <gtest/gtest.h>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "bezinv/kernels/batch.hpp"
+#include "support/reference_linear_algebra.hpp"
 
 namespace bezinv::kernels {
 namespace {
@@ -144,7 +145,7 @@ TEST(BezoutNullVectorSeed, NullVectorsOfConstructedMatrices) {
     Eigen::MatrixXd a(n, n);
     for (int r = 0; r < n; ++r)
       for (int c = 0; c < n; ++c) a(r, c) = gaussian(rng);
-    const Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(a).householderQ() * Eigen::MatrixXd::Identity(n, n);
+    const Eigen::MatrixXd q = test_support::orthogonal_factor(a);
     Eigen::VectorXd s(n);
     for (int k = 0; k < n; ++k) s(k) = spectrum(rng) * (rng() % 2 ? 1.0 : -1.0);
     const Eigen::MatrixXd b0 = q * s.asDiagonal() * q.transpose();

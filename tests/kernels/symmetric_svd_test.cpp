@@ -7,7 +7,7 @@
 // degree drop, Sect. 4 / Example 3) are then known without any rounding.
 #include <gtest/gtest.h>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -20,6 +20,7 @@
 #include "bezinv/kernels/symmetric_svd.hpp"
 #include "support/exact.hpp"
 #include "support/measure.hpp"
+#include "support/reference_linear_algebra.hpp"
 
 namespace bezinv::kernels {
 namespace {
@@ -120,25 +121,25 @@ TEST(SymmetricSvd, MatchesEigenJacobiOnRandomSymmetricMatrices) {
           for (int j = 0; j < n; ++j) b[i * n + j] *= std::pow(10.0, -4.0 * (i + j) / std::max(n - 1, 1));
       }
       const Svd s = run_kernel(n, b);
-      const Eigen::JacobiSVD<Dense> ref(to_eigen(n, b), Eigen::ComputeFullV);
-      const double s1 = ref.singularValues()(0);
+      const test_support::ReferenceSvd ref = test_support::reference_svd(to_eigen(n, b));
+      const double s1 = ref.sigma(0);
       for (int k = 0; k < n; ++k) {
         if (k > 0) {
           EXPECT_GE(s.sigma[k - 1], s.sigma[k]) << "descending, n = " << n;
         }
         // Measured worst 9.4e-15 sigma_1 (the two solvers each err by a few eps sigma_1 sqrt(n)).
-        const double e = std::abs(s.sigma[k] - ref.singularValues()(k)) / s1;
+        const double e = std::abs(s.sigma[k] - ref.sigma(k)) / s1;
         worst_sigma = std::max(worst_sigma, e);
         EXPECT_LE(e, 1e-13) << "n = " << n << " k = " << k;
         // Singular vectors are defined up to sign, and only when sigma_k is isolated. With gap g
         // (relative to sigma_1) both solvers' vectors are within ~eps/g of the truth
         // (Davis-Kahan), so sin(angle) * g must be round-off small. Measured worst 2.7e-15.
         double gap = INFINITY;
-        if (k > 0) gap = std::min(gap, (ref.singularValues()(k - 1) - ref.singularValues()(k)) / s1);
-        if (k + 1 < n) gap = std::min(gap, (ref.singularValues()(k) - ref.singularValues()(k + 1)) / s1);
+        if (k > 0) gap = std::min(gap, (ref.sigma(k - 1) - ref.sigma(k)) / s1);
+        if (k + 1 < n) gap = std::min(gap, (ref.sigma(k) - ref.sigma(k + 1)) / s1);
         if (gap < 1e-6) continue;
         std::vector<double> other(n);
-        for (int i = 0; i < n; ++i) other[i] = ref.matrixV()(i, k);
+        for (int i = 0; i < n; ++i) other[i] = ref.V(i, k);
         const double sine = sine_of_angle(n, s, k, other);
         const double scaled = sine * std::min(gap, 1.0);
         worst_angle_times_gap = std::max(worst_angle_times_gap, scaled);
