@@ -4,8 +4,13 @@
 # each BEZINV_KERNEL this CPU runs, the options that change the computation, and the error
 # messages and exit codes of whole-file failures. Use it around any change meant to keep behaviour.
 #
-#   bash scripts/same_answers.sh [REV]              # REV: a commit, branch or tag; default HEAD
-#   bash scripts/same_answers.sh --base-binary PATH # compare against an already built bezinv
+#   bash scripts/same_answers.sh [--within-accuracy] [REV]              # REV: default HEAD
+#   bash scripts/same_answers.sh [--within-accuracy] --base-binary PATH # an already built bezinv
+#
+# --within-accuracy: result files may differ in the last bits of their numbers, within the accuracy
+# bound (tests/corpus/compare_results.py: the same statuses, paths and reasons, numbers within
+# 1e-9), for a change of method meant to give the same answers to the promised accuracy; error
+# messages and exit codes must still be identical.
 #
 # It builds REV's bezinv (Release, every kernel target) in build-answers/<hash>/ (kept, so a
 # second run is quick) and this tree's in build-answers/this/. Exit 0 when every output is identical; otherwise
@@ -17,6 +22,11 @@ jobs="$(nproc)"
 
 base_binary=""
 rev="HEAD"
+within_accuracy=0
+if [ "${1:-}" = "--within-accuracy" ]; then
+  within_accuracy=1
+  shift
+fi
 if [ "${1:-}" = "--base-binary" ]; then
   base_binary="$(realpath "$2")"
 elif [ $# -ge 1 ]; then
@@ -91,6 +101,7 @@ run_all "$this_binary" "$work/this"
 # is the same for both runs.
 different=0
 count=0
+within=0
 for file in "$work/base"/*; do
   name="$(basename "$file")"
   count=$((count + 1))
@@ -98,6 +109,16 @@ for file in "$work/base"/*; do
     echo "same_answers: $name: written by $rev only" >&2; different=1; continue
   fi
   if ! cmp -s "$file" "$work/this/$name"; then
+    if [ "$within_accuracy" -eq 1 ] && [[ "$name" == *.csv || "$name" == *.npy ]]; then
+      if /usr/bin/python3 tests/corpus/compare_results.py "$file" "$work/this/$name" >"$work/compare.log"; then
+        within=$((within + 1))
+        continue
+      fi
+      different=1
+      echo "same_answers: $name differs beyond the accuracy bound:" >&2
+      head -12 "$work/compare.log" >&2
+      continue
+    fi
     different=1
     echo "same_answers: $name differs:" >&2
     case "$name" in
@@ -114,4 +135,8 @@ if [ "$different" -ne 0 ]; then
   echo "same_answers: outputs differ from $rev (see above)" >&2
   exit 1
 fi
-echo "same_answers: $count outputs ($rows points each run) identical to $rev"
+if [ "$within" -gt 0 ]; then
+  echo "same_answers: $count outputs ($rows points each run): $((count - within)) identical to $rev, $within within the accuracy bound"
+else
+  echo "same_answers: $count outputs ($rows points each run) identical to $rev"
+fi

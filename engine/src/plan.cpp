@@ -20,6 +20,7 @@
 #include "bezinv/tolerances.hpp"
 #include "common_factor.hpp"
 #include "isolation.hpp"
+#include "stationary_points.hpp"
 
 #include "refine.hpp"
 
@@ -228,6 +229,7 @@ PlanData make_plan_data(const Curve& given) {
   }
 
   detail::isolation_pieces(plan);
+  detail::stationary_pieces(plan);
   plan.straight_line = n >= 2 && on_a_line(plan);
 
   if (plan.diagonal == 0.0) {

@@ -61,6 +61,14 @@ struct PlanData {
   int isolation_pieces = 0;
   std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique;
 
+  // The certified nearest-point search (engine/src/stationary_points.hpp): on each of
+  // kStationaryPieces pieces of [0, 1], the Bernstein coefficients (degree stationary_degree) of
+  // G0, Gx, Gy, with G0 - u0 Gx - v0 Gy of the sign of the distance's derivative (piece-major:
+  // G0, Gx, Gy of piece 0, then piece 1, ...), and per piece and polynomial a bound of the terms
+  // that round in them. Empty (degree 0) where the plan is not usable.
+  int stationary_degree = 0;
+  std::vector<double> stationary_g, stationary_scale;
+
   // Power-basis leading coefficients of the four polynomials and their size bounds, for
   // detecting a degree drop of p and q at a given point (paper Sect. 4).
   double lead_x_num = 0, lead_x_den = 0, lead_y_num = 0, lead_y_den = 0;

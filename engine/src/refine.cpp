@@ -7,6 +7,7 @@
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/tolerances.hpp"
+#include "stationary_points.hpp"
 
 namespace bezinv::detail {
 
@@ -153,6 +154,23 @@ Refined refine_parameter(const PlanData& plan, double u0, double v0, double t0, 
 int nearest_sample_count(int degree) { return std::max(32, kNearestSamplesPerDegree * degree); }
 
 double nearest_parameter_on_segment(const PlanData& plan, double u0, double v0, double hint) {
+  // The certified search first: it proves its answer the nearest point for nearly every point.
+  // Sampling stands behind it for the rest (a sign it cannot trust, a piece it could not split
+  // into parts of one sign change).
+  // A point so far that the distances to the curve's points agree to every bit is looked at from
+  // a stand-in on its ray at kFarStandIn (as a far point is, pipeline/far_point.cpp), where they
+  // still tell the curve's points apart.
+  const double far = std::max(std::abs(u0), std::abs(v0));
+  if (far > kFarEqualDistances && std::isfinite(far)) {
+    const double shrink = kFarStandIn / std::hypot(u0, v0);
+    u0 *= shrink;
+    v0 *= shrink;
+  }
+  const NearestOnSegment proved = certified_nearest_on_segment(plan, u0, v0, hint);
+  return proved.certified ? proved.t : nearest_parameter_by_sampling(plan, u0, v0, hint);
+}
+
+double nearest_parameter_by_sampling(const PlanData& plan, double u0, double v0, double hint) {
   // Fixed-size workspaces: the search runs per point, so it must not allocate.
   constexpr int kMaxSamples = kNearestSamplesPerDegree * kMaxDegree;
   const int samples = nearest_sample_count(plan.degree);

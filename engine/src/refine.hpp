@@ -40,9 +40,13 @@ Refined refine_parameter(const PlanData& plan, double u0, double v0, double t0, 
 // The number of intervals S of the nearest-point search's samples k / S at degree n.
 int nearest_sample_count(int degree);
 
-// Parameter of the nearest point of the segment [0,1] to (u0, v0): dense sampling finds every
-// basin, each local minimum is refined, the best one wins. The samples are plan.nearest_samples
-// (make_plan computes them). `hint` (if in [0,1]) is refined too.
+// Parameter of the nearest point of the segment [0,1] to (u0, v0): the certified search
+// (stationary_points.hpp) where it proves its answer, nearest_parameter_by_sampling otherwise.
+// `hint` (if in [0,1]) is a start the caller has.
 double nearest_parameter_on_segment(const PlanData& plan, double u0, double v0, double hint);
+
+// The same by dense sampling: it finds every basin wider than a sample, each local minimum is
+// refined, the best one wins. The samples are plan.nearest_samples (make_plan computes them).
+double nearest_parameter_by_sampling(const PlanData& plan, double u0, double v0, double hint);
 
 }  // namespace bezinv::detail

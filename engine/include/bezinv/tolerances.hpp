@@ -3,6 +3,7 @@
 // The reasoning and the measurements behind them: docs/accuracy-model.md and docs/fast-path.md.
 // Change one only with the test that measures it (tests/engine/*). Numbers that only set speed
 // (batch sizes, queue lengths) sit with their code and say so.
+#include <limits>
 
 namespace bezinv {
 
@@ -91,6 +92,15 @@ inline constexpr int kNearestMaxBasins = 8;
 // the nearest point of the segment to a stand-in on that ray at this distance (normalized units,
 // curve size ~1), where nothing overflows ("Far points").
 inline constexpr double kFarStandIn = 1e8;
+// Beyond 1/eps (normalized units) the distances from a point to every point of the curve round to
+// the same double, and the nearest cannot be told from them: the search looks from the same
+// stand-in, and finds the point of the segment nearest in exact arithmetic (to O(1/kFarStandIn)).
+inline constexpr double kFarEqualDistances = 1.0 / std::numeric_limits<double>::epsilon();
+// The certified search (engine/src/stationary_points.hpp) trusts the sign of a Bernstein
+// coefficient of g (the sign of the distance's derivative) only beyond this many ulps, times g's
+// degree, of the scale of its terms: a bound of the rounding of making g per plan and combining it
+// per point, with room to spare (a coefficient within it sends the point to the sampling search).
+inline constexpr double kStationarySignUlps = 32;
 
 // ---- The fast path (docs/fast-path.md) ---------------------------------------------------------
 // It answers a lane only where the SVD path could not answer it differently.

@@ -1,0 +1,287 @@
+#include "stationary_points.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "bezinv/bernstein.hpp"
+#include "bezinv/tolerances.hpp"
+#include "refine.hpp"
+
+namespace bezinv::detail {
+namespace {
+
+constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+using Poly = std::vector<double>;  // Bernstein coefficients; the degree is size - 1
+
+// p'(t) = n sum (p_{i+1} - p_i) B_i^{n-1}. With `bound`, of the absolute values and with the
+// difference a sum: a bound of the terms that round (the same for the other operations).
+Poly derivative(const Poly& p, bool bound) {
+  const int n = static_cast<int>(p.size()) - 1;
+  if (n == 0) return Poly{0.0};
+  Poly out(n);
+  for (int i = 0; i < n; ++i) out[i] = n * (bound ? p[i + 1] + p[i] : p[i + 1] - p[i]);
+  return out;
+}
+
+// (p q)_k = sum_{i+j=k} C(a,i) C(b,j) / C(a+b,k) p_i q_j: a product in the Bernstein basis.
+Poly product(const Poly& p, const Poly& q) {
+  const int a = static_cast<int>(p.size()) - 1, b = static_cast<int>(q.size()) - 1;
+  Poly out(a + b + 1, 0.0);
+  for (int i = 0; i <= a; ++i)
+    for (int j = 0; j <= b; ++j)
+      out[i + j] += binomial(a, i) * binomial(b, j) / binomial(a + b, i + j) * p[i] * q[j];
+  return out;
+}
+
+Poly combine(const Poly& p, const Poly& q, double sign) {
+  Poly out(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) out[i] = p[i] + sign * q[i];
+  return out;
+}
+
+// The polynomials of g = G0 - u0 Gx - v0 Gy (the header's formulas), or with `bound` their bounds.
+std::array<Poly, 3> stationary_polynomials(const PlanData& plan, bool bound) {
+  auto load = [&](const std::vector<double>& c) {
+    Poly p(c.begin(), c.end());
+    if (bound)
+      for (double& v : p) v = std::abs(v);
+    return p;
+  };
+  const Poly X = load(plan.x_num), Wx = load(plan.x_den), Y = load(plan.y_num), Wy = load(plan.y_den);
+  const double minus = bound ? 1.0 : -1.0;
+  // H = N' D - N D' (degree 2n - 1 as written; its top coefficient cancels).
+  const auto h = [&](const Poly& N, const Poly& D) {
+    return combine(product(derivative(N, bound), D), product(N, derivative(D, bound)), minus);
+  };
+  const Poly Hx = h(X, Wx), Hy = h(Y, Wy);
+  if (plan.common_denominator) return {combine(product(X, Hx), product(Y, Hy), 1.0), product(Wx, Hx), product(Wx, Hy)};
+  const Poly Wx3 = product(product(Wx, Wx), Wx), Wy3 = product(product(Wy, Wy), Wy);
+  return {combine(product(product(X, Hx), Wy3), product(product(Y, Hy), Wx3), 1.0), product(product(Wx, Hx), Wy3),
+          product(product(Wy, Hy), Wx3)};
+}
+
+// de Casteljau at s: the coefficients on [0, s] (left) and [s, 1] (right) of the same polynomial.
+void split(const double* c, int m, double s, double* left, double* right) {
+  std::array<double, 6 * kMaxDegree> work{};
+  std::copy_n(c, m + 1, work.begin());
+  left[0] = work[0];
+  right[m] = work[m];
+  for (int r = 1; r <= m; ++r) {
+    for (int i = 0; i <= m - r; ++i) work[i] = (1 - s) * work[i] + s * work[i + 1];
+    left[r] = work[0];
+    right[m - r] = work[m - r];
+  }
+}
+
+// The coefficients of p on [a, b] (0 <= a < b <= 1).
+Poly restrict_to(const Poly& p, double a, double b) {
+  const int m = static_cast<int>(p.size()) - 1;
+  Poly left(m + 1), right(m + 1), unused(m + 1);
+  split(p.data(), m, b, left.data(), unused.data());
+  split(left.data(), m, a / b, unused.data(), right.data());
+  return right;
+}
+
+double max_abs(const Poly& p) {
+  double m = 0.0;
+  for (double v : p) m = std::max(m, std::abs(v));
+  return m;
+}
+
+// The sign changes of c[0..m], or -1 where an interior coefficient is within `slack` of zero (its
+// sign not to be trusted). An end coefficient within it means f' is about 0 at that end of the
+// interval (a minimum exactly at a piece's boundary: a symmetric curve's middle): it is counted
+// with its neighbour's sign, and near_first / near_last say so; the caller then refines from
+// that end, which finds the stationary point there (the interval holds no other it would miss:
+// the count without that end's change covers the rest).
+int sign_changes(const double* c, int m, double slack, bool& near_first, bool& near_last) {
+  const auto trusted = [&](int k) { return std::abs(c[k]) > slack; };  // false for NaN too
+  near_first = !trusted(0);
+  near_last = !trusted(m);
+  if (m == 0 || (near_first && !trusted(1)) || (near_last && !trusted(m - 1))) return -1;
+  int changes = 0;
+  bool last_negative = (near_first ? c[1] : c[0]) < 0;
+  for (int k = 1; k <= m; ++k) {
+    if (k < m && !trusted(k)) return -1;
+    const bool negative = (k == m && near_last ? c[m - 1] : c[k]) < 0;
+    if (negative != last_negative) ++changes;
+    last_negative = negative;
+  }
+  return changes;
+}
+
+// A lower bound of the distance from (u0, v0) to the curve on [a, b]: the nearest of the isolation
+// boxes of the pieces that meet it (0 where there are none).
+double box_lower_bound(const PlanData& plan, double u0, double v0, double a, double b) {
+  const int K = plan.isolation_pieces;
+  if (K == 0) return 0.0;
+  const double* box = plan.isolation_boxes.data();
+  const int first = std::clamp(static_cast<int>(std::floor(a * K)), 0, K - 1);
+  const int last = std::clamp(static_cast<int>(std::ceil(b * K)) - 1, first, K - 1);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int i = first; i <= last; ++i) {
+    const double dx = std::max(std::abs(u0 - box[i]) - box[K + i], 0.0);
+    const double dy = std::max(std::abs(v0 - box[2 * K + i]) - box[3 * K + i], 0.0);
+    nearest = std::min(nearest, std::sqrt(dx * dx + dy * dy));
+  }
+  return nearest * (1 - kIsolationMargin);
+}
+
+// The one minimum of f in (a, b), where f' < 0 at a and > 0 at b: Newton's method on f' from
+// `start` (in [a, b]), each step kept inside the bracket (bisection where it would leave it), then
+// refine_parameter's last steps, so the answer ends as the sampling search's would.
+Refined bracketed_minimum(const PlanData& plan, double u0, double v0, double a, double b, double start) {
+  double lo = a, hi = b, t = start;
+  for (int iteration = 0; iteration < 2 * kNewtonMaxIterations; ++iteration) {
+    const CurveJet j = curve_jet(plan, t);
+    const double ex = j.x - u0, ey = j.y - v0;
+    const double slope1 = ex * j.dx + ey * j.dy;
+    const double slope2 = j.dx * j.dx + j.dy * j.dy + ex * j.ddx + ey * j.ddy;
+    if (!std::isfinite(slope1) || slope1 == 0) break;
+    (slope1 < 0 ? lo : hi) = t;
+    double next = slope2 > 0 ? t - slope1 / slope2 : lo - 1;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const bool done = std::abs(next - t) <= kNewtonStopUlps * kEpsilon * std::max(1.0, std::abs(t));
+    t = next;
+    if (done || hi - lo <= kNewtonStopUlps * kEpsilon) break;
+  }
+  return refine_parameter(plan, u0, v0, t, /*stay_on_segment=*/true);
+}
+
+// Whether a refinement ended at a stationary point of the distance: cos(P(t) - P0, P'(t)) at most
+// kStationaryCosine (decide.cpp's test), or on the curve.
+bool stationary(const PlanData& plan, double u0, double v0, const Refined& r) {
+  if (!(r.distance > 0)) return r.distance == 0;
+  const CurveJet j = curve_jet(plan, r.t);
+  const double along = (j.x - u0) * j.dx + (j.y - v0) * j.dy;
+  return std::abs(along) <= kStationaryCosine * r.distance * std::hypot(j.dx, j.dy);
+}
+
+}  // namespace
+
+void stationary_pieces(PlanData& plan) {
+  const std::array<Poly, 3> g = stationary_polynomials(plan, false), bound = stationary_polynomials(plan, true);
+  const int m = static_cast<int>(g[0].size()) - 1;
+  // The sign of Wx^3 Wy^3 (W^3) on [0, 1], so that G0 - u0 Gx - v0 Gy has the sign of f'.
+  const double sign = plan.common_denominator ? (plan.x_den[0] > 0 ? 1.0 : -1.0)
+                                              : ((plan.x_den[0] > 0) == (plan.y_den[0] > 0) ? 1.0 : -1.0);
+  plan.stationary_degree = m;
+  plan.stationary_g.assign(static_cast<std::size_t>(kStationaryPieces) * 3 * (m + 1), 0.0);
+  plan.stationary_scale.assign(static_cast<std::size_t>(kStationaryPieces) * 3, 0.0);
+  for (int piece = 0; piece < kStationaryPieces; ++piece) {
+    const double a = static_cast<double>(piece) / kStationaryPieces, b = static_cast<double>(piece + 1) / kStationaryPieces;
+    for (int which = 0; which < 3; ++which) {
+      const Poly on_piece = restrict_to(g[which], a, b);
+      double* out = plan.stationary_g.data() + (static_cast<std::size_t>(piece) * 3 + which) * (m + 1);
+      for (int k = 0; k <= m; ++k) out[k] = sign * on_piece[k];
+      plan.stationary_scale[piece * 3 + which] = max_abs(restrict_to(bound[which], a, b));
+    }
+  }
+}
+
+NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, double v0, double hint) {
+  NearestOnSegment best;
+  best.distance = std::numeric_limits<double>::infinity();
+  const int m = plan.stationary_degree;
+  if (m <= 0 || !std::isfinite(u0) || !std::isfinite(v0)) return best;
+  // A candidate replaces the best so far only when nearer by more than the rounding of the two
+  // distances: where two parameters are equally near (a curve traced twice, a point on an axis of
+  // symmetry) the first found stays, and the hint is looked at first, as the sampling search does.
+  const auto consider = [&](double t, double d) {
+    if (d < best.distance * (1 - kNearestTieUlps * kEpsilon)) best.t = t, best.distance = d;
+  };
+  // The upper bound to beat: the refined hint, then the ends of the segment. Where the hint ends
+  // at a stationary point, the interval below that holds it needs no search of its own.
+  double stationary_hint = std::numeric_limits<double>::quiet_NaN();
+  if (hint >= 0.0 && hint <= 1.0) {
+    const Refined r = refine_parameter(plan, u0, v0, hint, /*stay_on_segment=*/true);
+    consider(r.t, r.distance);
+    if (stationary(plan, u0, v0, r)) stationary_hint = r.t;
+  }
+  // P(0) and P(1) are the first and last of the sampling search's samples (make_plan).
+  const double* samples = plan.nearest_samples.data();
+  const int sample_count = static_cast<int>(plan.nearest_samples.size() / 2) - 1;
+  const auto sample_distance = [&](int k) {
+    const double dx = samples[2 * k] - u0, dy = samples[2 * k + 1] - v0;
+    return std::sqrt(dx * dx + dy * dy);  // no overflow: the caller brings far points within kFarEqualDistances
+  };
+  consider(0.0, sample_distance(0));
+  consider(1.0, sample_distance(sample_count));
+  if (!std::isfinite(best.distance)) return best;
+
+  // The pieces, nearest lower bound first, so the bound tightens before the far ones are looked at.
+  std::array<std::pair<double, int>, kStationaryPieces> order;
+  for (int piece = 0; piece < kStationaryPieces; ++piece)
+    order[piece] = {box_lower_bound(plan, u0, v0, static_cast<double>(piece) / kStationaryPieces,
+                                    static_cast<double>(piece + 1) / kStationaryPieces),
+                    piece};
+  std::sort(order.begin(), order.end());
+
+  struct Interval {
+    double a, b;
+    int halvings;
+    std::array<double, 6 * kMaxDegree> c;
+  };
+  // Depth first: at most one interval waits per halving level, and the one in hand.
+  std::array<Interval, kStationaryMaxHalvings + 2> stack;
+  int waiting = 0;
+  const double gamma = kStationarySignUlps * (m + 1) * kEpsilon;
+  for (const auto& [lower_bound, piece] : order) {
+    if (lower_bound > best.distance) break;
+    const double* G = plan.stationary_g.data() + static_cast<std::size_t>(piece) * 3 * (m + 1);
+    const double* scale = plan.stationary_scale.data() + piece * 3;
+    const double slack = gamma * (scale[0] + std::abs(u0) * scale[1] + std::abs(v0) * scale[2]);
+    Interval& first = stack[waiting++];
+    first.a = static_cast<double>(piece) / kStationaryPieces;
+    first.b = static_cast<double>(piece + 1) / kStationaryPieces;
+    first.halvings = 0;
+    for (int k = 0; k <= m; ++k) first.c[k] = G[k] - u0 * G[m + 1 + k] - v0 * G[2 * (m + 1) + k];
+    while (waiting > 0) {
+      const Interval here = stack[--waiting];
+      if (here.halvings > 0 && box_lower_bound(plan, u0, v0, here.a, here.b) > best.distance) continue;
+      // The slack stays that of the whole piece: de Casteljau's convex combinations do not enlarge
+      // the terms, and add rounding far below it.
+      bool near_first = false, near_last = false;
+      const int changes = sign_changes(here.c.data(), m, slack, near_first, near_last);
+      if (changes < 0) return best;  // a sign not to be trusted
+      for (const auto& [near, end] : {std::pair{near_first, here.a}, std::pair{near_last, here.b}})
+        if (near) {
+          const Refined r = refine_parameter(plan, u0, v0, end, /*stay_on_segment=*/true);
+          consider(r.t, r.distance);
+        }
+      if (changes == 0) continue;    // f monotone here: its minimum is at an end, looked at elsewhere
+      if (changes == 1) {
+        // f decreases, then increases: one minimum inside (the first sign as counted).
+        if ((near_first ? here.c[1] : here.c[0]) < 0) {
+          // The interval's one stationary point is its minimum: the hint's, if it ended inside;
+          // otherwise refined from the nearest of the samples inside (or the middle), and kept
+          // there by bracketing if the refinement would leave.
+          if (here.a < stationary_hint && stationary_hint < here.b) continue;
+          double start = 0.5 * (here.a + here.b), nearest = std::numeric_limits<double>::infinity();
+          for (int k = static_cast<int>(std::ceil(here.a * sample_count)); k <= sample_count && k <= here.b * sample_count; ++k)
+            if (const double d = sample_distance(k); d < nearest) nearest = d, start = static_cast<double>(k) / sample_count;
+          Refined r = refine_parameter(plan, u0, v0, start, /*stay_on_segment=*/true);
+          if (!(here.a <= r.t && r.t <= here.b && stationary(plan, u0, v0, r)))
+            r = bracketed_minimum(plan, u0, v0, here.a, here.b, start);
+          consider(r.t, r.distance);
+        }
+        continue;
+      }
+      if (here.halvings == kStationaryMaxHalvings) return best;
+      Interval left, right;
+      left.a = here.a, left.b = right.a = 0.5 * (here.a + here.b), right.b = here.b;
+      left.halvings = right.halvings = here.halvings + 1;
+      split(here.c.data(), m, 0.5, left.c.data(), right.c.data());
+      stack[waiting++] = right;
+      stack[waiting++] = left;
+    }
+  }
+  best.certified = true;
+  return best;
+}
+
+}  // namespace bezinv::detail

@@ -1,0 +1,92 @@
+#!/usr/bin/python3
+"""Compares two `bezinv invert` outputs (CSV or .npy) row by row, within the accuracy bound.
+
+    compare_results.py BASE THIS
+
+Same number of rows, and per row: the same status, path and reason; t, t2, the residual and the
+singular values equal, or both NaN, or within 1e-9 (t, t2: absolute, in the parameter; the others:
+relative, plus 1e-13 for the residual). That is the accuracy bezinv promises for a parameter (ACCURACY.md): a change of method
+that keeps it gives "the same answers" even where the last bits move.
+
+An off_curve row answers with the nearest point of the segment; where two points of it are equally
+near (a curve traced twice, a point on an axis of symmetry, a point so far that every distance
+rounds alike), either is the answer. Such a row, everything else the same and the residual within
+the bound but t elsewhere, is counted as "equally near", not as a difference.
+
+Prints a summary line and every row beyond the bound; exit 1 if there is one.
+"""
+import ast
+import csv
+import math
+import struct
+import sys
+
+NUMERIC = ("t", "residual", "t2", "sigma_min", "sigma_next")
+TEXT = ("status", "path", "reason")
+BOUND = 1e-9
+RESIDUAL_FLOOR = 1e-13
+
+
+def rows(path):
+    if path.endswith(".npy"):
+        # bezinv's result records (engine/io/results.cpp): five little-endian doubles, two bytes.
+        with open(path, "rb") as f:
+            data = f.read()
+        if data[:6] != b"\x93NUMPY":
+            raise SystemExit(f"{path}: not a .npy file")
+        header_length, start = (struct.unpack_from("<H", data, 8)[0], 10) if data[6] == 1 else \
+            (struct.unpack_from("<I", data, 8)[0], 12)
+        header = ast.literal_eval(data[start:start + header_length].decode("latin1"))
+        names = [name for name, _ in header["descr"]]
+        if names != list(NUMERIC) + ["status", "path"]:
+            raise SystemExit(f"{path}: unexpected record {header['descr']}")
+        for offset in range(start + header_length, len(data), 42):
+            *numbers, status, way = struct.unpack_from("<5dBB", data, offset)
+            yield {**dict(zip(NUMERIC, numbers)), "status": status, "path": way}
+    else:
+        with open(path, newline="") as f:
+            for r in csv.DictReader(f):
+                out = {k: float(r[k]) for k in NUMERIC if k in r}
+                out.update({k: r[k] for k in TEXT if k in r})
+                yield out
+
+
+def close(name, a, b):
+    if a == b or (math.isnan(a) and math.isnan(b)):
+        return True
+    if math.isnan(a) or math.isnan(b):
+        return False
+    if name in ("t", "t2"):
+        return abs(a - b) <= BOUND
+    # A residual is |P(t) - P0|, rounded at the scale of the coordinates: a tiny one (a point
+    # 1e-10 from a curve of size 1) moves by a relative 1e-7 when its last bits do.
+    floor = RESIDUAL_FLOOR if name == "residual" else 0.0
+    return abs(a - b) <= BOUND * max(abs(a), abs(b)) + floor
+
+
+def main(base, this):
+    a, b = list(rows(base)), list(rows(this))
+    if len(a) != len(b):
+        print(f"{this}: {len(b)} rows, {base}: {len(a)}")
+        return 1
+    identical = within = tied = beyond = 0
+    for i, (x, y) in enumerate(zip(a, b)):
+        if x == y or all(close(k, x[k], y[k]) if k in NUMERIC else x[k] == y[k] for k in x):
+            if all(x[k] == y[k] or (k in NUMERIC and math.isnan(x[k]) and math.isnan(y[k])) for k in x):
+                identical += 1
+            else:
+                within += 1
+            continue
+        if x.get("status") in ("off_curve", 3) and all(
+                close(k, x[k], y[k]) if k in NUMERIC else x[k] == y[k] for k in x if k != "t"):
+            tied += 1
+            continue
+        beyond += 1
+        print(f"row {i + 1}: {x}\n    now: {y}")
+    print(f"{this}: {identical} rows identical, {within} within the accuracy bound, {tied} equally near, "
+          f"{beyond} beyond the bound")
+    return 1 if beyond else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1], sys.argv[2]))
