@@ -21,6 +21,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <memory>
 #include <random>
 #include <string>
@@ -70,6 +71,9 @@ struct Workload {
   std::vector<Curve> curves;
   std::vector<std::vector<Point>> points;  // kPointsPerCurve per curve
   std::vector<std::vector<double>> t;      // their known parameters, uniform in [0,1]
+  // Noisy workloads: each point's distance to P(t), the point it was moved from (an upper bound of
+  // its distance to the segment); empty on the curve.
+  std::vector<std::vector<double>> base_distance;
 };
 
 // Random rational Bezier curves on perturbed arcs (the same family as invert_bench.cpp) and
@@ -102,12 +106,47 @@ const Workload& workload(int degree) {
   return w;
 }
 
+// The same curves and parameters, each point moved off the curve by Gaussian noise of standard
+// deviation 10^-noise_exponent x the curve's diagonal in each coordinate (noise_exponent 0: the
+// points on the curve, workload(degree)).
+const Workload& workload(int degree, int noise_exponent) {
+  if (noise_exponent == 0) return workload(degree);
+  static std::map<std::pair<int, int>, Workload> cache;
+  auto [it, inserted] = cache.try_emplace(std::make_pair(degree, noise_exponent));
+  Workload& w = it->second;
+  if (inserted) {
+    const Workload& on = workload(degree);
+    w.curves = on.curves;
+    w.t = on.t;
+    std::mt19937_64 rng(9100 + 31 * degree + noise_exponent);
+    std::normal_distribution<double> gaussian;
+    for (std::size_t c = 0; c < on.curves.size(); ++c) {
+      const double sigma = std::pow(10.0, -noise_exponent) * make_plan(on.curves[c]).diagonal();
+      std::vector<Point> points;
+      std::vector<double> base;
+      for (std::size_t k = 0; k < on.points[c].size(); ++k) {
+        const Point p = on.points[c][k];
+        const Point moved{p.x + sigma * gaussian(rng), p.y + sigma * gaussian(rng)};
+        const auto q = on.curves[c].point(on.t[c][k]);
+        points.push_back(moved);
+        base.push_back(std::hypot(moved.x - q[0], moved.y - q[1]));
+      }
+      w.points.push_back(std::move(points));
+      w.base_distance.push_back(std::move(base));
+    }
+  }
+  return w;
+}
+
 struct Agreement {
   double agree = 0, median_dt = 0, no_answer = 0;
   double fast_path = -1;  // bezinv only: the share of rows answered by the LU fast path
 };
 
-// The untimed check: parameter(c, k) for every point of every curve against the known t.
+// The untimed check: parameter(c, k) for every point of every curve against the known t. Off the
+// curve the known t is not the answer (the nearest point is): there a parameter agrees when its
+// point is at least as near as the point the noisy point was made from (to 1e-9 relative, 1e-12
+// of the diagonal), which a wrong extremum is not; dt is still |t - t_known|.
 Agreement measure_agreement(const Workload& w, const std::function<double(int, int)>& parameter) {
   std::vector<double> dt;
   int agreeing = 0, missing = 0;
@@ -120,7 +159,13 @@ Agreement measure_agreement(const Workload& w, const std::function<double(int, i
         continue;
       }
       dt.push_back(std::abs(t - w.t[c][k]));
-      if (dt.back() <= kAgreement) ++agreeing;
+      if (w.base_distance.empty()) {
+        if (dt.back() <= kAgreement) ++agreeing;
+      } else {
+        const auto q = w.curves[c].point(t);
+        const double d = std::hypot(w.points[c][k].x - q[0], w.points[c][k].y - q[1]);
+        if (d <= w.base_distance[c][k] * (1 + 1e-9) + 1e-12) ++agreeing;
+      }
     }
   std::nth_element(dt.begin(), dt.begin() + dt.size() / 2, dt.end());
   const double total = static_cast<double>(dt.size());
@@ -129,10 +174,10 @@ Agreement measure_agreement(const Workload& w, const std::function<double(int, i
 
 // Google Benchmark calls a benchmark function several times while it sizes the run: the check is
 // made once per (library, degree).
-void report_agreement(benchmark::State& state, const std::string& library,
+void report_agreement(benchmark::State& state, const std::string& library, int noise_exponent,
                       const std::function<Agreement()>& measure) {
-  static std::map<std::pair<std::string, int>, Agreement> cache;
-  const auto key = std::make_pair(library, static_cast<int>(state.range(0)));
+  static std::map<std::tuple<std::string, int, int>, Agreement> cache;
+  const auto key = std::make_tuple(library, static_cast<int>(state.range(0)), noise_exponent);
   auto it = cache.find(key);
   if (it == cache.end()) it = cache.emplace(key, measure()).first;
   state.counters["agree"] = it->second.agree;
@@ -151,9 +196,9 @@ const std::vector<InversionPlan>& plans(int degree) {
   return it->second;
 }
 
-void run_bezinv(benchmark::State& state, int threads, const char* label) {
+void run_bezinv(benchmark::State& state, int threads, const char* label, int noise_exponent = 0) {
   const int n = static_cast<int>(state.range(0));
-  const Workload& w = workload(n);
+  const Workload& w = workload(n, noise_exponent);
   const std::vector<InversionPlan>& p = plans(n);
   const InvertOptions options{.threads = threads};
   std::vector<PointResult> results(kPointsPerCurve);
@@ -165,7 +210,7 @@ void run_bezinv(benchmark::State& state, int threads, const char* label) {
     c = (c + 1) % kCurves;
   }
   state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
-  report_agreement(state, label, [&] {
+  report_agreement(state, label, noise_exponent, [&] {
     std::vector<std::vector<double>> t(kCurves);
     std::size_t fast = 0;
     for (int curve = 0; curve < kCurves; ++curve) {
@@ -184,6 +229,10 @@ void run_bezinv(benchmark::State& state, int threads, const char* label) {
 void BM_Bezinv_refined(benchmark::State& state) { run_bezinv(state, 1, "bezinv"); }
 // Two threads: wall-clock time (UseRealTime at registration), so items_per_second is the throughput.
 void BM_Bezinv_refined_2threads(benchmark::State& state) { run_bezinv(state, 2, "bezinv"); }
+// Off the curve (range(1): the noise exponent, workload(degree, noise_exponent)), one thread.
+void BM_Bezinv_refined_noisy(benchmark::State& state) {
+  run_bezinv(state, 1, "bezinv", static_cast<int>(state.range(1)));
+}
 
 // ---- the paper's way, and Eigen per point ----------------------------------------------------------
 
@@ -201,7 +250,7 @@ void BM_Paper_recurrence_JacobiSVD(benchmark::State& state) {
     c = (c + 1) % kCurves;
   }
   state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
-  report_agreement(state, "paper", [&] {
+  report_agreement(state, "paper", 0, [&] {
     return measure_agreement(w, [&](int curve, int k) { return paper.parameter(w.curves[curve], w.points[curve][k]); });
   });
 }
@@ -239,7 +288,7 @@ void BM_Eigen_SelfAdjoint_per_point(benchmark::State& state) {
     c = (c + 1) % kCurves;
   }
   state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
-  report_agreement(state, "eigen", [&] {
+  report_agreement(state, "eigen", 0, [&] {
     return measure_agreement(w, [&](int curve, int k) { return eigen_parameter(p[curve], w.points[curve][k], B, solver); });
   });
 }
@@ -274,9 +323,9 @@ const std::vector<Handle(Geom2d_Curve)>& occt_curves(int degree) {
   return it->second;
 }
 
-void BM_OCCT_ProjectPointOnCurve(benchmark::State& state) {
+void run_occt(benchmark::State& state, int noise_exponent) {
   const int n = static_cast<int>(state.range(0));
-  const Workload& w = workload(n);
+  const Workload& w = workload(n, noise_exponent);
   const std::vector<Handle(Geom2d_Curve)>& curves = occt_curves(n);
   std::vector<double> t(kPointsPerCurve);
   int c = 0;
@@ -287,10 +336,13 @@ void BM_OCCT_ProjectPointOnCurve(benchmark::State& state) {
     c = (c + 1) % kCurves;
   }
   state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
-  report_agreement(state, "occt", [&] {
+  report_agreement(state, "occt", noise_exponent, [&] {
     return measure_agreement(w, [&](int curve, int k) { return occt_parameter(curves[curve], w.points[curve][k]); });
   });
 }
+
+void BM_OCCT_ProjectPointOnCurve(benchmark::State& state) { run_occt(state, 0); }
+void BM_OCCT_ProjectPointOnCurve_noisy(benchmark::State& state) { run_occt(state, static_cast<int>(state.range(1))); }
 
 #endif  // BEZINV_HAVE_OCCT
 
@@ -358,7 +410,7 @@ bool stack_is_large() {
          (limit.rlim_cur == RLIM_INFINITY || limit.rlim_cur >= (rlim_t{1} << 32));
 }
 
-void BM_SISL_ClosestPoint(benchmark::State& state) {
+void run_sisl(benchmark::State& state, int noise_exponent) {
   if (!stack_is_large()) {
     state.SkipWithError("SISL's s1953 can overflow an 8 MiB stack: run under `ulimit -s unlimited`");
     for (auto _ : state) {
@@ -366,7 +418,7 @@ void BM_SISL_ClosestPoint(benchmark::State& state) {
     return;
   }
   const int n = static_cast<int>(state.range(0));
-  const Workload& w = workload(n);
+  const Workload& w = workload(n, noise_exponent);
   const std::vector<SislCurve>& curves = sisl_curves(n);
   std::vector<double> t(kPointsPerCurve);
   int c = 0;
@@ -377,10 +429,13 @@ void BM_SISL_ClosestPoint(benchmark::State& state) {
     c = (c + 1) % kCurves;
   }
   state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
-  report_agreement(state, "sisl", [&] {
+  report_agreement(state, "sisl", noise_exponent, [&] {
     return measure_agreement(w, [&](int curve, int k) { return sisl_parameter(curves[curve].get(), w.points[curve][k]); });
   });
 }
+
+void BM_SISL_ClosestPoint(benchmark::State& state) { run_sisl(state, 0); }
+void BM_SISL_ClosestPoint_noisy(benchmark::State& state) { run_sisl(state, static_cast<int>(state.range(1))); }
 
 #endif  // BEZINV_HAVE_SISL
 
@@ -404,6 +459,24 @@ const bool registered = [] {
         ->UseRealTime()
         ->Unit(benchmark::kMicrosecond);
   }
+  // Off the curve: degrees 2-20 at noise 1e-6, 1e-4 and 1e-2 of the diagonal (Gaussian, per
+  // coordinate), OCCT, SISL and bezinv on one thread, degree by degree and noise by noise.
+  for (int n = 2; n <= 20; ++n)
+    for (int noise_exponent : {6, 4, 2}) {
+#ifdef BEZINV_HAVE_OCCT
+      benchmark::RegisterBenchmark("BM_OCCT_ProjectPointOnCurve_noisy", BM_OCCT_ProjectPointOnCurve_noisy)
+          ->Args({n, noise_exponent})
+          ->Unit(benchmark::kMicrosecond);
+#endif
+#ifdef BEZINV_HAVE_SISL
+      benchmark::RegisterBenchmark("BM_SISL_ClosestPoint_noisy", BM_SISL_ClosestPoint_noisy)
+          ->Args({n, noise_exponent})
+          ->Unit(benchmark::kMicrosecond);
+#endif
+      benchmark::RegisterBenchmark("BM_Bezinv_refined_noisy", BM_Bezinv_refined_noisy)
+          ->Args({n, noise_exponent})
+          ->Unit(benchmark::kMicrosecond);
+    }
   return true;
 }();
 
