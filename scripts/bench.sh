@@ -48,8 +48,12 @@ baselines = json.load(open(f"{build}/bench-results-baselines.json"))
 merged = dict(baselines, benchmarks=engine["benchmarks"] + baselines["benchmarks"])
 json.dump(merged, open(f"{build}/bench-results.json", "w"), indent=2)
 
-runs = {}
+runs, noisy = {}, {}
 for b in baselines["benchmarks"]:
+    if "_noisy/" in b["name"]:  # name/degree/noise exponent
+        name, degree, exponent = b["name"].rsplit("/", 2)
+        noisy[(name, int(degree), int(exponent))] = b
+        continue
     name, degree = b["name"].removesuffix("/real_time").rsplit("/", 1)  # UseRealTime adds /real_time
     runs[(name, int(degree))] = b
 def rate(name, n):
@@ -75,5 +79,15 @@ for n in sorted({n for (_, n) in runs}):
     print(f"| {n} | {si(o)} | {si(s_)} | {si(p_) if p_ == p_ else '-'} | {si(e_) if e_ == e_ else '-'} | {si(b1)} | {si(b2)} | "
           f"{ratio(b1, o)} | {ratio(b1, s_)} | {ratio(b1, p_)} | {ratio(b1, e_)} | {ratio(b2, b1)} | {100 * fp:.1f}% | "
           f"{agree(occt, n)} / {agree(sisl, n)} / {agree(one, n)} |")
+print("\nOff the curve: points moved by Gaussian noise of sigma = noise x the diagonal per coordinate; 1 thread;")
+print("agree: the answer's point at least as near as the point the noisy one was made from")
+print("| n | noise | OCCT | SISL | bezinv | ÷ OCCT | ÷ SISL | fast path | agree OCCT / SISL / bezinv |")
+print("|---|---|---|---|---|---|---|---|---|")
+names = ("BM_OCCT_ProjectPointOnCurve_noisy", "BM_SISL_ClosestPoint_noisy", "BM_Bezinv_refined_noisy")
+for n, e in sorted({(n, e) for (_, n, e) in noisy}, key=lambda k: (k[0], -k[1])):
+    o, s_, b1 = (noisy.get((x, n, e), {}).get("items_per_second", float("nan")) for x in names)
+    fp = noisy.get((names[2], n, e), {}).get("fast_path", float("nan"))
+    ag = " / ".join(f"{100 * noisy[(x, n, e)]['agree']:.2f}%" if (x, n, e) in noisy else "-" for x in names)
+    print(f"| {n} | 1e-{e} | {si(o)} | {si(s_)} | {si(b1)} | {ratio(b1, o)} | {ratio(b1, s_)} | {100 * fp:.1f}% | {ag} |")
 print(f"\nfull results: {build}/bench-results.json")
 EOF
