@@ -310,18 +310,10 @@ bool isolated(const PlanData& plan, double u0, double v0, double t, double dista
   const double limit = isolation_limit(tolerance);
   if (plan.isolation_far[j] - distance > limit) return true;
   // Otherwise P0 itself against every box not next to t's: all farther than the tolerance.
-  const double* x_centre = plan.isolation_boxes.data();
-  const double* x_half = x_centre + K;
-  const double* y_centre = x_centre + 2 * K;
-  const double* y_half = x_centre + 3 * K;
-  // All K distances first, then one test over them: the loop vectorizes.
+  // All K distances first, then one test over them: the loop vectorizes. (A NaN point is inside
+  // every box: never certified.)
   std::array<double, kIsolationMaxPieces> distance2;
-  for (int q = 0; q < K; ++q) {
-    double dx = std::abs(u0 - x_centre[q]) - x_half[q], dy = std::abs(v0 - y_centre[q]) - y_half[q];
-    dx = dx > 0 ? dx : 0.0;  // NaN (a NaN point) -> 0: inside every box, never certified
-    dy = dy > 0 ? dy : 0.0;
-    distance2[q] = dx * dx + dy * dy;
-  }
+  for (int q = 0; q < K; ++q) distance2[q] = isolation_box_distance2(plan, q, u0, v0);
   const double limit2 = limit * limit;
   for (int q = 0; q < K; ++q)
     if (!(distance2[q] > limit2) && (q < j - 1 || q > j + 1)) return false;

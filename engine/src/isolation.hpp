@@ -42,6 +42,7 @@
 // that turns by 45 degrees or more, a point off the curve by more than 3. allows (about a quarter
 // of the radius of curvature, or less), or a box near P0 (a second branch passing close, which is
 // what the check is for).
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -52,6 +53,16 @@ namespace bezinv::detail {
 // K, the number of pieces: 32 up to degree 9, more above (isolation_piece_count says why).
 inline constexpr int kIsolationMaxPieces = 256;
 int isolation_piece_count(int degree);
+
+// The squared distance from (u0, v0) to the box of piece q (0 inside it, and for a NaN point).
+inline double isolation_box_distance2(const PlanData& plan, int q, double u0, double v0) {
+  const int K = plan.isolation_pieces;
+  const double* box = plan.isolation_boxes.data();  // x centres, x half-widths, y centres, y half-widths
+  double dx = std::abs(u0 - box[q]) - box[K + q], dy = std::abs(v0 - box[2 * K + q]) - box[3 * K + q];
+  dx = dx > 0 ? dx : 0.0;
+  dy = dy > 0 ? dy : 0.0;
+  return dx * dx + dy * dy;
+}
 
 // Fills plan.isolation_boxes, isolation_far, isolation_monotone and isolation_unique from the
 // normalized curve (make_plan).

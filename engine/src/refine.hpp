@@ -37,6 +37,10 @@ struct Refined { double t, distance; };
 // step where that step moved t by a few ulps: the same to rounding).
 Refined refine_parameter(const PlanData& plan, double u0, double v0, double t0, bool stay_on_segment);
 
+// Whether t is a stationary point of the distance to (u0, v0), `distance` = |P(t) - P0|:
+// cos(P(t) - P0, P'(t)) <= kStationaryCosine (a refinement may also stop on its iteration cap).
+bool stationary_point(const PlanData& plan, double u0, double v0, double t, double distance);
+
 // The number of intervals S of the nearest-point search's samples k / S at degree n.
 int nearest_sample_count(int degree);
 

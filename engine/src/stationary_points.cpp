@@ -9,6 +9,7 @@
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/tolerances.hpp"
+#include "isolation.hpp"
 #include "refine.hpp"
 
 namespace bezinv::detail {
@@ -119,15 +120,11 @@ int sign_changes(const double* c, int m, double slack, bool& near_first, bool& n
 double box_lower_bound(const PlanData& plan, double u0, double v0, double a, double b) {
   const int K = plan.isolation_pieces;
   if (K == 0) return 0.0;
-  const double* box = plan.isolation_boxes.data();
   const int first = std::clamp(static_cast<int>(std::floor(a * K)), 0, K - 1);
   const int last = std::clamp(static_cast<int>(std::ceil(b * K)) - 1, first, K - 1);
-  double nearest = std::numeric_limits<double>::infinity();
-  for (int i = first; i <= last; ++i) {
-    const double dx = std::max(std::abs(u0 - box[i]) - box[K + i], 0.0);
-    const double dy = std::max(std::abs(v0 - box[2 * K + i]) - box[3 * K + i], 0.0);
-    nearest = std::min(nearest, std::sqrt(dx * dx + dy * dy));
-  }
+  double nearest2 = std::numeric_limits<double>::infinity();
+  for (int i = first; i <= last; ++i) nearest2 = std::min(nearest2, isolation_box_distance2(plan, i, u0, v0));
+  const double nearest = std::sqrt(nearest2);
   return nearest * (1 - kIsolationMargin);
 }
 
@@ -150,15 +147,6 @@ Refined bracketed_minimum(const PlanData& plan, double u0, double v0, double a, 
     if (done || hi - lo <= kNewtonStopUlps * kEpsilon) break;
   }
   return refine_parameter(plan, u0, v0, t, /*stay_on_segment=*/true);
-}
-
-// Whether a refinement ended at a stationary point of the distance: cos(P(t) - P0, P'(t)) at most
-// kStationaryCosine (decide.cpp's test), or on the curve.
-bool stationary(const PlanData& plan, double u0, double v0, const Refined& r) {
-  if (!(r.distance > 0)) return r.distance == 0;
-  const CurveJet j = curve_jet(plan, r.t);
-  const double along = (j.x - u0) * j.dx + (j.y - v0) * j.dy;
-  return std::abs(along) <= kStationaryCosine * r.distance * std::hypot(j.dx, j.dy);
 }
 
 }  // namespace
@@ -200,7 +188,7 @@ NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, d
   if (hint >= 0.0 && hint <= 1.0) {
     const Refined r = refine_parameter(plan, u0, v0, hint, /*stay_on_segment=*/true);
     consider(r.t, r.distance);
-    if (stationary(plan, u0, v0, r)) stationary_hint = r.t;
+    if (stationary_point(plan, u0, v0, r.t, r.distance)) stationary_hint = r.t;
   }
   // P(0) and P(1) are the first and last of the sampling search's samples (make_plan).
   const double* samples = plan.nearest_samples.data();
@@ -241,7 +229,8 @@ NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, d
     first.halvings = 0;
     for (int k = 0; k <= m; ++k) first.c[k] = G[k] - u0 * G[m + 1 + k] - v0 * G[2 * (m + 1) + k];
     while (waiting > 0) {
-      const Interval here = stack[--waiting];
+      // The interval in hand stays in its slot: halving writes its two halves over it and the next.
+      Interval& here = stack[--waiting];
       if (here.halvings > 0 && box_lower_bound(plan, u0, v0, here.a, here.b) > best.distance) continue;
       // The slack stays that of the whole piece: de Casteljau's convex combinations do not enlarge
       // the terms, and add rounding far below it.
@@ -265,19 +254,23 @@ NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, d
           for (int k = static_cast<int>(std::ceil(here.a * sample_count)); k <= sample_count && k <= here.b * sample_count; ++k)
             if (const double d = sample_distance(k); d < nearest) nearest = d, start = static_cast<double>(k) / sample_count;
           Refined r = refine_parameter(plan, u0, v0, start, /*stay_on_segment=*/true);
-          if (!(here.a <= r.t && r.t <= here.b && stationary(plan, u0, v0, r)))
+          if (!(here.a <= r.t && r.t <= here.b && stationary_point(plan, u0, v0, r.t, r.distance)))
             r = bracketed_minimum(plan, u0, v0, here.a, here.b, start);
           consider(r.t, r.distance);
         }
         continue;
       }
       if (here.halvings == kStationaryMaxHalvings) return best;
-      Interval left, right;
-      left.a = here.a, left.b = right.a = 0.5 * (here.a + here.b), right.b = here.b;
-      left.halvings = right.halvings = here.halvings + 1;
+      // split reads the coefficients into its own workspace first, so `here` (the slot of the
+      // right half) may be overwritten; the left half goes on top and is looked at next.
+      const double a = here.a, b = here.b, middle = 0.5 * (a + b);
+      const int halvings = here.halvings + 1;
+      Interval& right = here;
+      Interval& left = stack[waiting + 1];
       split(here.c.data(), m, 0.5, left.c.data(), right.c.data());
-      stack[waiting++] = right;
-      stack[waiting++] = left;
+      left.a = a, left.b = middle, left.halvings = halvings;
+      right.a = middle, right.b = b, right.halvings = halvings;
+      waiting += 2;
     }
   }
   best.certified = true;

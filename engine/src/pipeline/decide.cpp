@@ -136,9 +136,7 @@ void answer_fast(const PlanData& plan, double t, double distance, double sigma_m
 bool off_curve_nearest(const PlanData& plan, const BatchWorkspace& w, std::size_t l, const Candidate& c) {
   if (c.on_curve || !(c.t > 0.0 && c.t < 1.0) || !std::isfinite(c.distance)) return false;
   if (!detail::nearest_on_segment(plan, w.u[l], w.v[l], c.t, c.distance)) return false;
-  const detail::CurveJet jet = detail::curve_jet(plan, c.t);
-  const double along = (jet.x - w.u[l]) * jet.dx + (jet.y - w.v[l]) * jet.dy;
-  return std::abs(along) <= kStationaryCosine * c.distance * std::hypot(jet.dx, jet.dy);
+  return detail::stationary_point(plan, w.u[l], w.v[l], c.t, c.distance);
 }
 
 void decide_with_gap(const PlanData& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
