@@ -90,7 +90,7 @@ int run_profile(const ProfileOptions& options) {
   StageSeconds stages;  // (into the same results: a point's answer does not depend on the pass)
   for (std::size_t c = 0; c < w.plans.size(); ++c) invert(w.plans[c], w.points[c], results[c], invert_options, stages);
 
-  std::size_t total = 0, ok = 0, fast = 0, certified = 0;
+  std::size_t total = 0, ok = 0, fast = 0, certified = 0, by_distance = 0;
   double max_dt = 0;
   for (std::size_t c = 0; c < w.plans.size(); ++c)
     for (std::size_t i = 0; i < results[c].size(); ++i, ++total) {
@@ -98,6 +98,7 @@ int run_profile(const ProfileOptions& options) {
       ok += r.status == Status::ok;
       fast += r.path == Path::bezout_lu;
       certified += r.path == Path::bezout_lu && std::isnan(r.sigma_next);  // the isolation certificate's rows
+      by_distance += r.path == Path::nearest && std::isnan(r.sigma_min);    // the off-curve path's rows
       if (r.status == Status::ok) max_dt = std::max(max_dt, std::abs(r.t - w.t_true[c][i]));
     }
   const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
@@ -110,17 +111,20 @@ int run_profile(const ProfileOptions& options) {
         "{\"points_per_second\": %.6g, \"degree\": %d, \"threads\": %d, \"kernel\": \"%.*s\", \"kind\": \"%s\", "
         "\"points\": %zu, \"curves\": %zu, \"noise\": %g, \"refine\": %s, \"seconds\": %.6g, "
         "\"stages_points_per_second\": {\"form_b\": %.6g, \"kernel\": %.6g, \"read_out\": %.6g, \"refine\": %.6g, "
-        "\"decide\": %.6g}, \"ok\": %zu, \"fast_path\": %zu, \"certified\": %zu, \"max_abs_dt_ok\": %.3g}\n",
+        "\"off_curve\": %.6g, \"decide\": %.6g}, \"ok\": %zu, \"fast_path\": %zu, \"certified\": %zu, "
+        "\"off_curve_path\": %zu, \"max_abs_dt_ok\": %.3g}\n",
         pps, options.degree, threads, static_cast<int>(kernel.size()), kernel.data(), to_string(options.kind), total,
         w.plans.size(), options.noise, options.refine ? "true" : "false", wall, rate(stages.form_b),
-        rate(stages.kernel), rate(stages.read_out), rate(stages.refine), rate(stages.decide), ok, fast, certified, max_dt);
+        rate(stages.kernel), rate(stages.read_out), rate(stages.refine), rate(stages.off_curve), rate(stages.decide), ok,
+        fast, certified, by_distance, max_dt);
     return 0;
   }
   std::printf("bezinv profile: %zu points on %zu %s curves of degree %d, noise %g, refine %s, threads %d, kernel %.*s\n\n",
               total, w.plans.size(), to_string(options.kind), options.degree, options.noise,
               options.refine ? "on" : "off", threads, static_cast<int>(kernel.size()), kernel.data());
   std::printf("%-34s %14s %10s\n", "stage", "points/s", "share");
-  const double work = stages.form_b + stages.kernel + stages.read_out + stages.refine + stages.decide;
+  const double work =
+      stages.form_b + stages.kernel + stages.read_out + stages.refine + stages.off_curve + stages.decide;
   auto line = [&](const char* name, double seconds) {
     std::printf("%-34s %14.4g %9.1f%%\n", name, rate(seconds), work > 0 ? 100 * seconds / work : 0.0);
   };
@@ -128,6 +132,7 @@ int run_profile(const ProfileOptions& options) {
   line("kernel (seed, LU, SVD)", stages.kernel);
   line("read-out", stages.read_out);
   line("refine + residual", stages.refine);
+  line("off the curve, by distance", stages.off_curve);
   line("decide (status, rare paths)", stages.decide);
   std::printf("%-34s %14.4g   (wall clock, %.3f s)\n\n", "total", pps, wall);
   std::printf("ok %zu of %zu; max |t - t_true| over ok rows %.3g\n", ok, total, max_dt);
@@ -135,6 +140,8 @@ int run_profile(const ProfileOptions& options) {
   std::printf("answered by the fast path (null vector without an SVD, path bezout_lu): %zu of %zu (%.1f%%), "
               "%zu (%.1f%%) of them settled by the isolation certificate without a gap; the others by the SVD\n",
               fast, total, percent(fast), certified, percent(certified));
+  std::printf("answered off_curve by distance alone (path nearest, no singular values): %zu (%.1f%%)\n", by_distance,
+              percent(by_distance));
   return 0;
 }
 

@@ -80,10 +80,4 @@ bool isolated(const PlanData& plan, double u0, double v0, double t, double dista
 void isolated_by_far_boxes(const PlanData& plan, const double* t, const double* distance, double tolerance,
                            std::size_t count, std::uint8_t* certified);
 
-// True when P(t), at `distance` from (u0, v0), is the nearest point of the whole segment: the
-// certificate with the point's own distance for the tolerance, and the distance below
-// isolation_unique (t the only stationary point around it, not only the ones within
-// kDistinctParameterGap). t must be a stationary point of the distance (the caller checks it).
-bool nearest_on_segment(const PlanData& plan, double u0, double v0, double t, double distance);
-
 }  // namespace bezinv::detail

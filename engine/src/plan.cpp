@@ -19,6 +19,7 @@
 #include "bezinv/bezout.hpp"
 #include "bezinv/tolerances.hpp"
 #include "common_factor.hpp"
+#include "extension.hpp"
 #include "isolation.hpp"
 #include "stationary_points.hpp"
 
@@ -230,6 +231,7 @@ PlanData make_plan_data(const Curve& given) {
 
   detail::isolation_pieces(plan);
   detail::stationary_pieces(plan);
+  detail::extension_pieces(plan);
   plan.straight_line = n >= 2 && on_a_line(plan);
 
   if (plan.diagonal == 0.0) {

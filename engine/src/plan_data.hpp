@@ -65,9 +65,19 @@ struct PlanData {
   // kStationaryPieces pieces of [0, 1], the Bernstein coefficients (degree stationary_degree) of
   // G0, Gx, Gy, with G0 - u0 Gx - v0 Gy of the sign of the distance's derivative (piece-major:
   // G0, Gx, Gy of piece 0, then piece 1, ...), and per piece and polynomial a bound of the terms
-  // that round in them. Empty (degree 0) where the plan is not usable.
+  // that round in them; per piece the box around its isolation boxes (x min, x max, y min, y max).
+  // Empty (degree 0) where the plan is not usable.
   int stationary_degree = 0;
-  std::vector<double> stationary_g, stationary_scale;
+  std::vector<double> stationary_g, stationary_scale, stationary_boxes;
+
+  // The clearance of the extension (engine/src/extension.hpp): on each of its pieces (t >= 1,
+  // then t <= 0, each as s in [0, 1], in order) the Bernstein coefficients (degree
+  // extension_degree) of H0, Hx, Hy, Hw (piece-major), per piece and polynomial a bound of the
+  // terms that round in them, and the box of the piece's control points (x min, x max, y min,
+  // y max; NaN where its weights are not of one sign), and the square of a radius about the
+  // origin it stays outside (0: none). Empty (degree 0) below degree 2.
+  int extension_degree = 0;
+  std::vector<double> extension_h, extension_scale, extension_boxes, extension_far2;
 
   // Power-basis leading coefficients of the four polynomials and their size bounds, for
   // detecting a degree drop of p and q at a given point (paper Sect. 4).

@@ -154,7 +154,7 @@ Refined refine_parameter(const PlanData& plan, double u0, double v0, double t0, 
 bool stationary_point(const PlanData& plan, double u0, double v0, double t, double distance) {
   const CurveJet jet = curve_jet(plan, t);
   const double along = (jet.x - u0) * jet.dx + (jet.y - v0) * jet.dy;
-  return std::abs(along) <= kStationaryCosine * distance * std::hypot(jet.dx, jet.dy);
+  return std::abs(along) <= kStationaryCosine * distance * length(jet.dx, jet.dy);
 }
 
 int nearest_sample_count(int degree) { return std::max(32, kNearestSamplesPerDegree * degree); }

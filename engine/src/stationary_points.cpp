@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "bezinv/bernstein.hpp"
+#include "bernstein_arithmetic.hpp"
 #include "bezinv/tolerances.hpp"
 #include "isolation.hpp"
 #include "refine.hpp"
@@ -16,33 +16,7 @@ namespace bezinv::detail {
 namespace {
 
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
-using Poly = std::vector<double>;  // Bernstein coefficients; the degree is size - 1
-
-// p'(t) = n sum (p_{i+1} - p_i) B_i^{n-1}. With `bound`, of the absolute values and with the
-// difference a sum: a bound of the terms that round (the same for the other operations).
-Poly derivative(const Poly& p, bool bound) {
-  const int n = static_cast<int>(p.size()) - 1;
-  if (n == 0) return Poly{0.0};
-  Poly out(n);
-  for (int i = 0; i < n; ++i) out[i] = n * (bound ? p[i + 1] + p[i] : p[i + 1] - p[i]);
-  return out;
-}
-
-// (p q)_k = sum_{i+j=k} C(a,i) C(b,j) / C(a+b,k) p_i q_j: a product in the Bernstein basis.
-Poly product(const Poly& p, const Poly& q) {
-  const int a = static_cast<int>(p.size()) - 1, b = static_cast<int>(q.size()) - 1;
-  Poly out(a + b + 1, 0.0);
-  for (int i = 0; i <= a; ++i)
-    for (int j = 0; j <= b; ++j)
-      out[i + j] += binomial(a, i) * binomial(b, j) / binomial(a + b, i + j) * p[i] * q[j];
-  return out;
-}
-
-Poly combine(const Poly& p, const Poly& q, double sign) {
-  Poly out(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) out[i] = p[i] + sign * q[i];
-  return out;
-}
+using Poly = BernsteinPoly;
 
 // The polynomials of g = G0 - u0 Gx - v0 Gy (the header's formulas), or with `bound` their bounds.
 std::array<Poly, 3> stationary_polynomials(const PlanData& plan, bool bound) {
@@ -56,41 +30,13 @@ std::array<Poly, 3> stationary_polynomials(const PlanData& plan, bool bound) {
   const double minus = bound ? 1.0 : -1.0;
   // H = N' D - N D' (degree 2n - 1 as written; its top coefficient cancels).
   const auto h = [&](const Poly& N, const Poly& D) {
-    return combine(product(derivative(N, bound), D), product(N, derivative(D, bound)), minus);
+    return combine(product(derivative(N, bound), D), product(N, derivative(D, bound)), minus, bound);
   };
   const Poly Hx = h(X, Wx), Hy = h(Y, Wy);
   if (plan.common_denominator) return {combine(product(X, Hx), product(Y, Hy), 1.0), product(Wx, Hx), product(Wx, Hy)};
   const Poly Wx3 = product(product(Wx, Wx), Wx), Wy3 = product(product(Wy, Wy), Wy);
   return {combine(product(product(X, Hx), Wy3), product(product(Y, Hy), Wx3), 1.0), product(product(Wx, Hx), Wy3),
           product(product(Wy, Hy), Wx3)};
-}
-
-// de Casteljau at s: the coefficients on [0, s] (left) and [s, 1] (right) of the same polynomial.
-void split(const double* c, int m, double s, double* left, double* right) {
-  std::array<double, 6 * kMaxDegree> work{};
-  std::copy_n(c, m + 1, work.begin());
-  left[0] = work[0];
-  right[m] = work[m];
-  for (int r = 1; r <= m; ++r) {
-    for (int i = 0; i <= m - r; ++i) work[i] = (1 - s) * work[i] + s * work[i + 1];
-    left[r] = work[0];
-    right[m - r] = work[m - r];
-  }
-}
-
-// The coefficients of p on [a, b] (0 <= a < b <= 1).
-Poly restrict_to(const Poly& p, double a, double b) {
-  const int m = static_cast<int>(p.size()) - 1;
-  Poly left(m + 1), right(m + 1), unused(m + 1);
-  split(p.data(), m, b, left.data(), unused.data());
-  split(left.data(), m, a / b, unused.data(), right.data());
-  return right;
-}
-
-double max_abs(const Poly& p) {
-  double m = 0.0;
-  for (double v : p) m = std::max(m, std::abs(v));
-  return m;
 }
 
 // The sign changes of c[0..m], or -1 where an interior coefficient is within `slack` of zero (its
@@ -128,6 +74,22 @@ double box_lower_bound(const PlanData& plan, double u0, double v0, double a, dou
   return nearest * (1 - kIsolationMargin);
 }
 
+// The square of the same from the box around all of piece `piece`'s isolation boxes (one box, so
+// looser: it rules out the far pieces before the finer bound above is worth its cost).
+double piece_lower_bound2(const PlanData& plan, double u0, double v0, int piece) {
+  const double* box = plan.stationary_boxes.data() + 4 * piece;
+  const double dx = std::max({box[0] - u0, u0 - box[1], 0.0}), dy = std::max({box[2] - v0, v0 - box[3], 0.0});
+  return (dx * dx + dy * dy) * ((1 - kIsolationMargin) * (1 - kIsolationMargin));
+}
+
+// Where the control polygon of g on [a, b] (coefficients c[0..m]) first crosses from below zero to
+// above it: near g's one root there, and inside (a, b).
+double polygon_crossing(const double* c, int m, double a, double b) {
+  for (int j = 0; j < m; ++j)
+    if (c[j] < 0 && c[j + 1] > 0) return a + (b - a) * (j + c[j] / (c[j] - c[j + 1])) / m;
+  return 0.5 * (a + b);
+}
+
 // The one minimum of f in (a, b), where f' < 0 at a and > 0 at b: Newton's method on f' from
 // `start` (in [a, b]), each step kept inside the bracket (bisection where it would leave it), then
 // refine_parameter's last steps, so the answer ends as the sampling search's would.
@@ -160,6 +122,8 @@ void stationary_pieces(PlanData& plan) {
   plan.stationary_degree = m;
   plan.stationary_g.assign(static_cast<std::size_t>(kStationaryPieces) * 3 * (m + 1), 0.0);
   plan.stationary_scale.assign(static_cast<std::size_t>(kStationaryPieces) * 3, 0.0);
+  plan.stationary_boxes.assign(static_cast<std::size_t>(kStationaryPieces) * 4, 0.0);
+  const int K = plan.isolation_pieces;
   for (int piece = 0; piece < kStationaryPieces; ++piece) {
     const double a = static_cast<double>(piece) / kStationaryPieces, b = static_cast<double>(piece + 1) / kStationaryPieces;
     for (int which = 0; which < 3; ++which) {
@@ -168,10 +132,22 @@ void stationary_pieces(PlanData& plan) {
       for (int k = 0; k <= m; ++k) out[k] = sign * on_piece[k];
       plan.stationary_scale[piece * 3 + which] = max_abs(restrict_to(bound[which], a, b));
     }
+    // The box around the isolation boxes of the piece (the whole plane without them).
+    double* box = plan.stationary_boxes.data() + 4 * piece;
+    const double inf = std::numeric_limits<double>::infinity();
+    box[0] = box[2] = K > 0 ? inf : -inf;
+    box[1] = box[3] = K > 0 ? -inf : inf;
+    const double* boxes = plan.isolation_boxes.data();  // x centres, x half-widths, y centres, y half-widths
+    for (int q = piece * K / kStationaryPieces; K > 0 && q < (piece + 1) * K / kStationaryPieces; ++q) {
+      box[0] = std::min(box[0], boxes[q] - boxes[K + q]), box[1] = std::max(box[1], boxes[q] + boxes[K + q]);
+      box[2] = std::min(box[2], boxes[2 * K + q] - boxes[3 * K + q]);
+      box[3] = std::max(box[3], boxes[2 * K + q] + boxes[3 * K + q]);
+    }
   }
 }
 
-NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, double v0, double hint) {
+NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, double v0, double hint,
+                                              double hint_distance) {
   NearestOnSegment best;
   best.distance = std::numeric_limits<double>::infinity();
   const int m = plan.stationary_degree;
@@ -186,7 +162,8 @@ NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, d
   // at a stationary point, the interval below that holds it needs no search of its own.
   double stationary_hint = std::numeric_limits<double>::quiet_NaN();
   if (hint >= 0.0 && hint <= 1.0) {
-    const Refined r = refine_parameter(plan, u0, v0, hint, /*stay_on_segment=*/true);
+    const Refined r = std::isfinite(hint_distance) ? Refined{hint, hint_distance}
+                                                   : refine_parameter(plan, u0, v0, hint, /*stay_on_segment=*/true);
     consider(r.t, r.distance);
     if (stationary_point(plan, u0, v0, r.t, r.distance)) stationary_hint = r.t;
   }
@@ -201,25 +178,30 @@ NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, d
   consider(1.0, sample_distance(sample_count));
   if (!std::isfinite(best.distance)) return best;
 
-  // The pieces, nearest lower bound first, so the bound tightens before the far ones are looked at.
+  // The pieces, nearest lower bound first, so the bound tightens before the far ones are looked
+  // at; in their own order where the hint is a stationary point (then usually the answer, and
+  // the bound is already tight).
   std::array<std::pair<double, int>, kStationaryPieces> order;
-  for (int piece = 0; piece < kStationaryPieces; ++piece)
-    order[piece] = {box_lower_bound(plan, u0, v0, static_cast<double>(piece) / kStationaryPieces,
-                                    static_cast<double>(piece + 1) / kStationaryPieces),
-                    piece};
-  std::sort(order.begin(), order.end());
+  for (int piece = 0; piece < kStationaryPieces; ++piece) order[piece] = {piece_lower_bound2(plan, u0, v0, piece), piece};
+  if (!(stationary_hint >= 0.0)) std::sort(order.begin(), order.end());
 
   struct Interval {
     double a, b;
     int halvings;
-    std::array<double, 6 * kMaxDegree> c;
+    std::array<double, kMaxBernsteinDegree + 1> c;
   };
   // Depth first: at most one interval waits per halving level, and the one in hand.
   std::array<Interval, kStationaryMaxHalvings + 2> stack;
   int waiting = 0;
   const double gamma = kStationarySignUlps * (m + 1) * kEpsilon;
-  for (const auto& [lower_bound, piece] : order) {
-    if (lower_bound > best.distance) break;
+  for (const auto& [lower_bound2, piece] : order) {
+    if (lower_bound2 > best.distance * best.distance) {
+      if (stationary_hint >= 0.0) continue;
+      break;  // sorted: so are all the others
+    }
+    if (box_lower_bound(plan, u0, v0, static_cast<double>(piece) / kStationaryPieces,
+                        static_cast<double>(piece + 1) / kStationaryPieces) > best.distance)
+      continue;
     const double* G = plan.stationary_g.data() + static_cast<std::size_t>(piece) * 3 * (m + 1);
     const double* scale = plan.stationary_scale.data() + piece * 3;
     const double slack = gamma * (scale[0] + std::abs(u0) * scale[1] + std::abs(v0) * scale[2]);
@@ -249,12 +231,21 @@ NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, d
           // The interval's one stationary point is its minimum: the hint's, if it ended inside;
           // otherwise refined from the nearest of the samples inside (or the middle), and kept
           // there by bracketing if the refinement would leave.
+          // An end whose coefficient is about 0 may be a stationary point of its own, not this
+          // minimum (a maximum where the curve turns back: P' = 0 on an improper parametrization):
+          // then the start is where g's control polygon crosses zero, and an answer at that end
+          // is refused.
           if (here.a < stationary_hint && stationary_hint < here.b) continue;
           double start = 0.5 * (here.a + here.b), nearest = std::numeric_limits<double>::infinity();
-          for (int k = static_cast<int>(std::ceil(here.a * sample_count)); k <= sample_count && k <= here.b * sample_count; ++k)
-            if (const double d = sample_distance(k); d < nearest) nearest = d, start = static_cast<double>(k) / sample_count;
+          if (near_first || near_last) {
+            start = polygon_crossing(here.c.data(), m, here.a, here.b);
+          } else {
+            for (int k = static_cast<int>(std::ceil(here.a * sample_count)); k <= sample_count && k <= here.b * sample_count; ++k)
+              if (const double d = sample_distance(k); d < nearest) nearest = d, start = static_cast<double>(k) / sample_count;
+          }
           Refined r = refine_parameter(plan, u0, v0, start, /*stay_on_segment=*/true);
-          if (!(here.a <= r.t && r.t <= here.b && stationary_point(plan, u0, v0, r.t, r.distance)))
+          const bool at_flagged_end = (near_first && r.t <= here.a) || (near_last && r.t >= here.b);
+          if (!(here.a <= r.t && r.t <= here.b && !at_flagged_end && stationary_point(plan, u0, v0, r.t, r.distance)))
             r = bracketed_minimum(plan, u0, v0, here.a, here.b, start);
           consider(r.t, r.distance);
         }

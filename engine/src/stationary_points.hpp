@@ -25,6 +25,8 @@
 // point was classified; a coefficient too small for its sign to be trusted, or a piece still
 // undecided after kStationaryMaxHalvings halvings, leaves it uncertified (the caller then falls
 // back to the sampling search, refine.hpp).
+#include <limits>
+
 #include "plan_data.hpp"
 
 namespace bezinv::detail {
@@ -47,7 +49,10 @@ struct NearestOnSegment {
 };
 
 // The nearest point of the segment to (u0, v0), normalized coordinates; `hint` (if in [0, 1]) is a
-// start the caller already has. When not certified, t and distance are the best found so far.
-NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, double v0, double hint);
+// start the caller already has, refined here unless `hint_distance` is given: then the hint is
+// already refine_parameter's answer and hint_distance its distance. When not certified, t and
+// distance are the best found so far.
+NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, double v0, double hint,
+                                              double hint_distance = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace bezinv::detail

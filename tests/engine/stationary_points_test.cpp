@@ -127,6 +127,26 @@ TEST(CertifiedNearest, QuarterCircleFromItsCentreIsNotCertifiedAndElsewhereIsOnT
 // round to one double: the nearest point in exact arithmetic is the point of the segment farthest
 // along the point's direction, and that is what the search must give (not whichever point it
 // happened to look at first). Checked on a dense grid: no point of it lies farther along.
+// An improper parametrization (the curve traced there and back, P(t) = P(1 - t)) stops at t = 1/2:
+// P'(1/2) = 0, so t = 1/2 is a stationary point of the distance for every point, here a maximum.
+// A point on the curve near the turn lies at two parameters either side of it, one in each of the
+// pieces that meet at 1/2; the search must find one of them, not the turning point, whatever it
+// starts from. The points are made from known t (construction).
+TEST(CertifiedNearest, AnImproperCurvesTurningPointIsNotTakenForTheNearest) {
+  const detail::PlanData plan = detail::plan_data(
+      make_plan(Curve::bezier("improper", {{1, 1}, {0, -1}, {-1.0 / 3, 1}, {0, -1}, {1, 1}})));
+  for (double t_true : {0.49, 0.498, 0.4999, 0.45, 0.3}) {
+    const auto p0 = normalized_point(plan, t_true);
+    for (double hint : {-1.0, 0.5, t_true, 1 - t_true}) {
+      const detail::NearestOnSegment found = detail::certified_nearest_on_segment(plan, p0[0], p0[1], hint);
+      ASSERT_TRUE(found.certified) << t_true << " hint " << hint;
+      EXPECT_LE(found.distance, 1e-15) << t_true << " hint " << hint << " t " << found.t;
+      EXPECT_NEAR(std::min(std::abs(found.t - t_true), std::abs(found.t - (1 - t_true))), 0.0, 1e-9)
+          << t_true << " hint " << hint;
+    }
+  }
+}
+
 TEST(CertifiedNearest, AFarPointGetsThePointOfTheSegmentFarthestAlongItsDirection) {
   constexpr int kGrid = 4000;
   for (CurveKind kind : {CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational})

@@ -13,6 +13,7 @@ struct StageSeconds {
   double kernel = 0;    // null vectors or singular values and vectors of B (from degree 8 forming B too)
   double read_out = 0;  // algebraic t from the null vector
   double refine = 0;    // Newton to full precision, and the residual
+  double off_curve = 0; // off-curve points answered by distance alone (nearest point, clearance)
   double decide = 0;    // status, and the rare paths (double point, Sylvester, nearest point)
 };
 

@@ -119,12 +119,10 @@ inline constexpr double kFastPathMaxDefect = 1e-3;
 // The pair check skips a root of span{z, second} this close to the lane's refined t: z's own root
 // (z ~ beta(t) lies in the span), which refines back to t ("The second-parameter check").
 inline constexpr double kSameRoot = 1e-2 * kDistinctParameterGap;
-// Off the curve the fast path answers only at a stationary point of the distance,
-// cos(P(t) - P0, P'(t)) at most this: the SVD path's search would find t to ~1e-13 ("Off the curve").
+// A refined t is a stationary point of the distance where cos(P(t) - P0, P'(t)) is at most this
+// (refine.hpp, stationary_point): the nearest-point search then takes it as the one minimum of
+// its interval instead of refining again ("Off the curve, by distance").
 inline constexpr double kStationaryCosine = 1e-8;
-// ... and not where a root of span{z, second} lies this close to an end of the segment: the SVD's
-// slightly different vectors may put it on the other side, to be walked along the extension.
-inline constexpr double kRootNearEnd = 1e-6;
 // The isolation certificate's boxes are widened, and its tolerance raised, by this (relative) for
 // the rounding of the subdivision and the distances: ~n eps, far below any tolerance.
 inline constexpr double kIsolationMargin = 1e-12;

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "pipeline/fast_path.hpp"
+#include "pipeline/off_curve_path.hpp"
 #include "pipeline/form_b.hpp"
 #include "pipeline/pair_check.hpp"
 #include "pipeline/stage_clock.hpp"
@@ -26,7 +27,10 @@ void invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
   form_batch(plan, points, results, count, /*form=*/n >= 2 && !formed_b, w);
   clock.lap(&StageSeconds::form_b);
 
-  if (fast) fast_path(plan, points, results, count, options, w, clock);
+  if (fast) {
+    fast_path(plan, points, results, count, options, w, clock);
+    off_curve_path(plan, options, count, w, results, clock);
+  }
 
   // The SVD path for the lanes still undecided, compacted to the front of the batch (in order, so
   // moving lane lane_of[k] >= k down to k never overwrites a lane still to be moved).

@@ -77,29 +77,6 @@ bool separate_branches(const PlanData& plan, double u0, double v0, double t1, do
   return false;
 }
 
-// For an off-curve lane certified by off_curve_nearest, whether the SVD path would have no other
-// candidate on the curve: it looks for a second parameter only below kFastPathGapRatio, and then
-// none of the roots of span{z, second} may end within the tolerance. A root inside the segment is
-// covered by the certificate; one outside is walked along the extension, as settle() does.
-// Refused (the SVD path decides) when there are not two real roots or a root is near an end
-// (docs/fast-path.md, "Off the curve").
-bool extension_roots_clear(const PlanData& plan, const BatchWorkspace& w, std::size_t l, double tolerance) {
-  double roots[2];
-  if (null_space_roots(plan.degree, w, l, roots) != 2) return false;
-  for (double root : roots) {
-    if (std::abs(root) <= kRootNearEnd || std::abs(root - 1.0) <= kRootNearEnd) return false;
-    if (root > 0.0 && root < 1.0) continue;
-    if (settle(plan, w.u[l], w.v[l], root, Path::bezout_pair, tolerance, true).on_curve) return false;
-  }
-  return true;
-}
-
-// What needs the kernel's gap for an off-curve lane (off_curve_nearest is what the geometry says).
-bool off_curve_alone(const PlanData& plan, const BatchWorkspace& w, std::size_t l, double tolerance) {
-  return plan.degree < 3 || w.estimate[kBatchLanes + l] >= kFastPathGapRatio ||
-         extension_roots_clear(plan, w, l, tolerance);
-}
-
 }  // namespace
 
 bool admit(const PlanData& plan, const Point& point, double u, double v, PointResult& r) {
@@ -122,34 +99,20 @@ bool admit(const PlanData& plan, const Point& point, double u, double v, PointRe
 }
 
 void answer_fast(const PlanData& plan, double t, double distance, double sigma_min, double sigma_next,
-                 PointResult& r, Status status) {
+                 PointResult& r) {
   r.t = t;
   r.residual = distance * plan.scale;
-  r.status = status;
+  r.status = Status::ok;
   r.path = Path::bezout_lu;
   r.sigma_min = sigma_min;
   r.sigma_next = sigma_next;
-}
-
-// Stationary: cos(P(t) - P0, P'(t)) <= kStationaryCosine, so the search's stationary point is
-// within ~1e-13 of t (docs/fast-path.md, "Off the curve").
-bool off_curve_nearest(const PlanData& plan, const BatchWorkspace& w, std::size_t l, const Candidate& c) {
-  if (c.on_curve || !(c.t > 0.0 && c.t < 1.0) || !std::isfinite(c.distance)) return false;
-  if (!detail::nearest_on_segment(plan, w.u[l], w.v[l], c.t, c.distance)) return false;
-  return detail::stationary_point(plan, w.u[l], w.v[l], c.t, c.distance);
 }
 
 void decide_with_gap(const PlanData& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
                      double tolerance, bool asked, PointResult& result) {
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
-  if (!c.on_segment) {
-    if ((asked || off_curve_nearest(plan, w, l, c)) && off_curve_alone(plan, w, l, tolerance)) {
-      w.active[l] = 0;
-      answer_fast(plan, c.t, c.distance, w.estimate[l], w.estimate[stride + l], result, Status::off_curve);
-    }
-    return;
-  }
+  if (!c.on_segment) return;  // the off-curve path (off_curve_path.hpp), then the SVD path
   // Answered now, or after the second-parameter check (flush_pair_check_queue): either way the
   // lane leaves the batch.
   w.active[l] = 0;

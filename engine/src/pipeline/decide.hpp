@@ -3,9 +3,10 @@
 // functions below, in the order a point meets them:
 //   admit             stage 1: invalid_input (a non-finite coordinate), failed (an unusable
 //                     curve), or off_curve for a point too far to form B for (far_point.hpp)
-//   answer_fast       the fast path's ok (certified on the segment) and off_curve
+//   answer_fast       the fast path's ok (certified on the segment)
 //   decide_with_gap   the fast path with the kernel's sigma_{n-1} estimate: answered here, after
 //                     the second-parameter check (pair_check.hpp), or left to the SVD path
+//   off_curve_path    off_curve by distance alone, without the SVD (off_curve_path.hpp)
 //   decide            the SVD path: every status, from every candidate parameter
 // The rules are in docs/accuracy-model.md (statuses) and docs/fast-path.md (when the fast path
 // may answer: only where the SVD path would give the same answer).
@@ -22,20 +23,14 @@ namespace bezinv::detail {
 // the pipeline; otherwise r holds its answer.
 bool admit(const PlanData& plan, const Point& point, double u, double v, PointResult& r);
 
-// The fast path's answer: status ok (or off_curve), path bezout_lu, the sigma columns from the
-// kernel's estimates.
+// The fast path's answer: status ok, path bezout_lu, the sigma columns from the kernel's estimates.
 void answer_fast(const PlanData& plan, double t, double distance, double sigma_min, double sigma_next,
-                 PointResult& r, Status status = Status::ok);
+                 PointResult& r);
 
-// Whether the fast path may answer lane l (refined to c, off the curve) off_curve from the curve's
-// geometry: its refinement ended inside (0, 1) at a stationary point of the distance that the
-// isolation certificate proves the nearest point of the segment.
-bool off_curve_nearest(const PlanData& plan, const BatchWorkspace& w, std::size_t l, const Candidate& c);
-
-// The fast path's decision for lane l, refined to c, with the kernel's gap: answered here (ok, or
-// off_curve), after the second-parameter check, or left to the SVD path (still active). `asked`:
-// the curve's geometry was asked already (the gap pass): on the segment the isolation certificate
-// refused the lane, off it off_curve_nearest held.
+// The fast path's decision for lane l, refined to c, with the kernel's gap: answered here (ok),
+// after the second-parameter check, or left active (off the segment: to the off-curve path; else
+// to the SVD path). `asked`: the isolation certificate was asked already (the gap pass) and
+// refused the lane.
 void decide_with_gap(const PlanData& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
                      double tolerance, bool asked, PointResult& result);
 

@@ -105,6 +105,9 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
     const bool refined = std::isfinite(w.t_algebraic[l]);
     if (refined) {
       const bool at_end = w.t_refined[l] == 0.0 || w.t_refined[l] == 1.0;
+      // Off the segment at an end: the off-curve path looks at the extension (off_curve_path.hpp),
+      // where settle() would walk it.
+      if (at_end && w.distance[l] > tolerance) continue;
       if (std::isfinite(w.distance[l]) && !(at_end && !(w.distance[l] <= tolerance))) {
         c = Candidate{};
         c.t = w.t_refined[l];
@@ -123,9 +126,9 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
     if (c.on_segment && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance)) {
       w.active[l] = 0;
       answer_fast(plan, c.t, c.distance, w.estimate[l], PointResult::nan, results[l]);
-    } else if (c.on_segment || off_curve_nearest(plan, w, l, c)) {
+    } else if (c.on_segment) {
       w.gap_lane_of[waiting++] = static_cast<std::uint8_t>(l);
-    }
+    }  // off the curve: the off-curve path, then (if it cannot prove its answer) the SVD path
   }
   clock.lap(&StageSeconds::refine);
   if (waiting > 0) gap_pass(plan, waiting, tolerance, w, results, clock);

@@ -71,7 +71,7 @@ void invert_curve(const PlanData& plan, std::span<const Point> points, std::span
   if (per_thread)
     for (const StageSeconds& s : *per_thread) {
       stages->form_b += s.form_b; stages->kernel += s.kernel; stages->read_out += s.read_out;
-      stages->refine += s.refine; stages->decide += s.decide;
+      stages->refine += s.refine; stages->off_curve += s.off_curve; stages->decide += s.decide;
     }
 }
 

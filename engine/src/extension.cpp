@@ -1,0 +1,184 @@
+#include "extension.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "bernstein_arithmetic.hpp"
+#include "bezinv/tolerances.hpp"
+
+namespace bezinv::detail {
+namespace {
+
+constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+constexpr int kHalves = 2;
+
+// The coefficients in s of one half (header): b_j = sum_{k<=j} C(j,k) (-1)^k c_{m-k} for t >= 1
+// (half 0), c_k for t <= 0 (half 1); with `bound`, the sums of the absolute values of the terms.
+BernsteinPoly on_half(const std::vector<double>& c, int half, bool bound) {
+  const int m = static_cast<int>(c.size()) - 1;
+  BernsteinPoly out(m + 1, 0.0);
+  for (int j = 0; j <= m; ++j) {
+    double sum = 0.0, binomial_jk = 1.0;  // C(j, k), exact (j <= kMaxDegree)
+    for (int k = 0; k <= j; ++k) {
+      const double ck = c[half == 0 ? m - k : k];
+      sum += bound ? binomial_jk * std::abs(ck) : ((k % 2) ? -binomial_jk : binomial_jk) * ck;
+      binomial_jk = binomial_jk * (j - k) / (k + 1);
+    }
+    out[j] = sum;
+  }
+  return out;
+}
+
+// H0, Hx, Hy, Hw of the header for one half, or with `bound` the bounds of their terms.
+std::array<BernsteinPoly, 4> clearance_polynomials(const PlanData& plan, int half, bool bound) {
+  const BernsteinPoly X = on_half(plan.x_num, half, bound), Wx = on_half(plan.x_den, half, bound),
+                      Y = on_half(plan.y_num, half, bound), Wy = on_half(plan.y_den, half, bound);
+  if (plan.common_denominator)
+    return {combine(product(X, X), product(Y, Y), 1.0), scaled(product(X, Wx), bound ? 2.0 : -2.0),
+            scaled(product(Y, Wx), bound ? 2.0 : -2.0), product(Wx, Wx)};
+  const BernsteinPoly Wx2 = product(Wx, Wx), Wy2 = product(Wy, Wy);
+  return {combine(product(Wy2, product(X, X)), product(Wx2, product(Y, Y)), 1.0),
+          scaled(product(Wy2, product(X, Wx)), bound ? 2.0 : -2.0),
+          scaled(product(Wx2, product(Y, Wy)), bound ? 2.0 : -2.0), product(Wx2, Wy2)};
+}
+
+// The box of a piece's control points (x from X / Wx, y from Y / Wy), widened by the rounding of
+// the coefficients; NaN where a weight is not of the piece's one sign (the box would not hold it).
+std::array<double, 4> control_box(const BernsteinPoly& X, const BernsteinPoly& Wx, const BernsteinPoly& Y,
+                                  const BernsteinPoly& Wy, const std::array<BernsteinPoly, 4>& bounds) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::array<double, 4> box{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                            std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  const int n = static_cast<int>(X.size()) - 1;
+  const double gamma = kStationarySignUlps * (n + 1) * kEpsilon;
+  const auto one_sign = [](const BernsteinPoly& w) {
+    return std::all_of(w.begin(), w.end(), [](double v) { return v > 0; }) ||
+           std::all_of(w.begin(), w.end(), [](double v) { return v < 0; });
+  };
+  if (!one_sign(Wx) || !one_sign(Wy)) return {nan, nan, nan, nan};
+  for (int k = 0; k <= n; ++k)
+    for (int axis = 0; axis < 2; ++axis) {
+      const double num = axis == 0 ? X[k] : Y[k], den = axis == 0 ? Wx[k] : Wy[k];
+      const double value = num / den;
+      const double error = gamma * (bounds[2 * axis][k] + std::abs(value) * bounds[2 * axis + 1][k]) / std::abs(den);
+      if (!std::isfinite(value) || !std::isfinite(error)) return {nan, nan, nan, nan};
+      box[2 * axis] = std::min(box[2 * axis], value - error);
+      box[2 * axis + 1] = std::max(box[2 * axis + 1], value + error);
+    }
+  return box;
+}
+
+// The square of a radius R about the origin that the piece stays outside: h at P0 = 0 and r = R,
+// H0 - R^2 Hw, has all its coefficients positive beyond their rounding (0 where none is found).
+// Half the largest R^2 the coefficients allow, so the check below has room.
+double far_radius2(const BernsteinPoly& H0, const BernsteinPoly& Hw, double scale0, double scale_w) {
+  const double gamma = kStationarySignUlps * static_cast<double>(H0.size()) * kEpsilon;
+  double r2 = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < H0.size(); ++k)
+    if (Hw[k] > 0) r2 = std::min(r2, H0[k] / Hw[k]);
+  r2 = 0.5 * r2;
+  if (!std::isfinite(r2) || !(r2 > 0)) return 0.0;
+  for (std::size_t k = 0; k < H0.size(); ++k)
+    if (!(H0[k] - r2 * Hw[k] > gamma * (scale0 + r2 * scale_w))) return 0.0;
+  return r2;
+}
+
+}  // namespace
+
+void extension_pieces(PlanData& plan) {
+  plan.extension_degree = 0;
+  plan.extension_h.clear();
+  plan.extension_scale.clear();
+  plan.extension_boxes.clear();
+  plan.extension_far2.clear();
+  if (plan.degree < 2 || !plan.usable) return;
+  const int m = (plan.common_denominator ? 2 : 4) * plan.degree;
+  plan.extension_degree = m;
+  for (int half = 0; half < kHalves; ++half) {
+    const std::array<BernsteinPoly, 4> h = clearance_polynomials(plan, half, false),
+                                       h_bound = clearance_polynomials(plan, half, true);
+    const std::array<BernsteinPoly, 4> curve{on_half(plan.x_num, half, false), on_half(plan.x_den, half, false),
+                                             on_half(plan.y_num, half, false), on_half(plan.y_den, half, false)};
+    const std::array<BernsteinPoly, 4> curve_bound{on_half(plan.x_num, half, true), on_half(plan.x_den, half, true),
+                                                   on_half(plan.y_num, half, true), on_half(plan.y_den, half, true)};
+    // The piece [a, b] of this half, halved while its box does not hold it (a weight of the other
+    // sign: a pole nearby) and it is wider than 2^-kExtensionMaxPlanHalvings of a first piece, so
+    // that a pole costs the per-point h test only on a narrow piece.
+    const auto add = [&](auto&& self, double a, double b, int halvings) -> void {
+      std::array<BernsteinPoly, 4> bounds;
+      for (int which = 0; which < 4; ++which) bounds[which] = restrict_to(curve_bound[which], a, b);
+      const std::array<double, 4> box = control_box(restrict_to(curve[0], a, b), restrict_to(curve[1], a, b),
+                                                    restrict_to(curve[2], a, b), restrict_to(curve[3], a, b), bounds);
+      if (box[0] != box[0] && halvings < kExtensionMaxPlanHalvings) {
+        self(self, a, 0.5 * (a + b), halvings + 1);
+        self(self, 0.5 * (a + b), b, halvings + 1);
+        return;
+      }
+      std::array<BernsteinPoly, 4> on_piece;
+      std::array<double, 4> scale;
+      for (int which = 0; which < 4; ++which) {
+        on_piece[which] = restrict_to(h[which], a, b);
+        scale[which] = max_abs(restrict_to(h_bound[which], a, b));
+        plan.extension_h.insert(plan.extension_h.end(), on_piece[which].begin(), on_piece[which].end());
+        plan.extension_scale.push_back(scale[which]);
+      }
+      plan.extension_boxes.insert(plan.extension_boxes.end(), box.begin(), box.end());
+      plan.extension_far2.push_back(far_radius2(on_piece[0], on_piece[3], scale[0], scale[3]));
+    };
+    for (int k = 0; k < kExtensionPieces; ++k)
+      add(add, static_cast<double>(k) / kExtensionPieces, static_cast<double>(k + 1) / kExtensionPieces, 0);
+  }
+}
+
+bool extension_clear(const PlanData& plan, double u0, double v0, double radius) {
+  const int m = plan.extension_degree;
+  if (m == 0 || !std::isfinite(u0) || !std::isfinite(v0) || !(radius >= 0)) return false;
+  const double radius2 = radius * radius;
+  const double c = u0 * u0 + v0 * v0 - radius2, c_bound = u0 * u0 + v0 * v0 + radius2;
+  const double gamma = kStationarySignUlps * (m + 1) * kEpsilon;
+  struct Interval {
+    int halvings;
+    std::array<double, kMaxBernsteinDegree + 1> h;
+  };
+  std::array<Interval, kExtensionMaxHalvings + 2> stack;
+  const int pieces = static_cast<int>(plan.extension_boxes.size() / 4);
+  // |P(t) - P0| >= |P(t)| - |P0| > radius wherever |P(t)| > |P0| + radius.
+  const double beyond = std::sqrt(u0 * u0 + v0 * v0) + radius, beyond2 = beyond * beyond;
+  for (int piece = 0; piece < pieces; ++piece) {
+    if (beyond2 < plan.extension_far2[piece]) continue;
+    const double* box = plan.extension_boxes.data() + piece * 4;
+    if (box[0] == box[0]) {  // not NaN: the box holds the piece
+      const double dx = std::max({box[0] - u0, u0 - box[1], 0.0}), dy = std::max({box[2] - v0, v0 - box[3], 0.0});
+      if (dx * dx + dy * dy > radius2) continue;
+    }
+    const double* H = plan.extension_h.data() + static_cast<std::size_t>(piece) * 4 * (m + 1);
+    const double* scale = plan.extension_scale.data() + piece * 4;
+    const double slack = gamma * (scale[0] + std::abs(u0) * scale[1] + std::abs(v0) * scale[2] + c_bound * scale[3]);
+    int waiting = 0;
+    Interval& first = stack[waiting++];
+    first.halvings = 0;
+    for (int k = 0; k <= m; ++k)
+      first.h[k] = H[k] + u0 * H[m + 1 + k] + v0 * H[2 * (m + 1) + k] + c * H[3 * (m + 1) + k];
+    while (waiting > 0) {
+      Interval& here = stack[--waiting];
+      // The end coefficients are h at the ends: a negative one is a point of the curve within r.
+      if (!(here.h[0] > -slack) || !(here.h[m] > -slack)) return false;
+      bool positive = true;
+      for (int k = 0; k <= m && positive; ++k) positive = here.h[k] > slack;
+      if (positive) continue;
+      if (here.halvings == kExtensionMaxHalvings) return false;
+      // The halves in this slot and the next; the slack stays the piece's (de Casteljau's convex
+      // combinations do not enlarge the terms).
+      const int halvings = here.halvings + 1;
+      Interval& left = stack[waiting + 1];
+      split(here.h.data(), m, 0.5, left.h.data(), here.h.data());
+      left.halvings = here.halvings = halvings;
+      waiting += 2;
+    }
+  }
+  return true;
+}
+
+}  // namespace bezinv::detail

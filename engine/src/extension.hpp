@@ -1,0 +1,52 @@
+#pragma once
+// The curve beyond its segment, and the proof that none of it comes near a point (engine internal).
+//
+// The contract answers `outside_segment` where the extension of the curve (t outside [0, 1])
+// passes within the tolerance of the point. An off-curve answer therefore needs, besides the
+// nearest point of the segment, the proof that no point of the extension is that near: then no
+// algebraic parameter could lead anywhere else, and the Bezout/SVD work decides nothing.
+//
+// The extension as two rational curves of [0, 1]. A polynomial of degree m in Bernstein form on
+// [0, 1], sum c_i C(m,i) (1-t)^(m-i) t^i, is the form F(a, b) = sum c_i C(m,i) a^(m-i) b^i at
+// (a, b) = (1 - t, t). With s in [0, 1],
+//     t = 1 / (1 - s)    (t from 1 to +inf):   (a, b) ~ (-s, 1),   F = sum c_i C(m,i) (-s)^(m-i),
+//     t = -s / (1 - s)   (t from 0 to -inf):   (a, b) ~ (1, -s),   F = sum c_i C(m,i) (-s)^i,
+// both F(a, b) = (1 - s)^m f(t(s)): the same sign as f wherever t is finite, and at s = 1 the
+// form's value at t = infinity. In the Bernstein basis of s the coefficients are alternating
+// sums, b_j = sum_{k<=j} C(j,k) (-1)^k c_{m-k} (first half) and c_k in place of c_{m-k} (second).
+//
+// The clearance polynomial. For P0 = (u0, v0) and a radius r, with x = X / Wx, y = Y / Wy,
+//     h = Wy^2 (X - u0 Wx)^2 + Wx^2 (Y - v0 Wy)^2 - r^2 Wx^2 Wy^2 = Wx^2 Wy^2 (|P - P0|^2 - r^2)
+//       = H0 + u0 Hx + v0 Hy + (u0^2 + v0^2 - r^2) Hw,
+//     H0 = Wy^2 X^2 + Wx^2 Y^2,   Hx = -2 X Wx Wy^2,   Hy = -2 Y Wy Wx^2,   Hw = Wx^2 Wy^2
+// (degree 4n; with one denominator W divide by W^2: H0 = X^2 + Y^2, Hx = -2 X W, Hy = -2 Y W,
+// Hw = W^2, degree 2n). h > 0 wherever the curve is farther than r from P0, and at a pole (a
+// real root of a denominator) h is a square, not negative. make_plan stores H0, Hx, Hy, Hw on
+// kExtensionPieces pieces of each half; per point h's coefficients on a piece are one affine
+// combination, and all of them positive (beyond their rounding) prove the piece clear. Where a
+// piece's weights are of one sign its control points' box bounds it too, which clears most
+// pieces with four comparisons (make_plan halves the pieces around a pole until it does, for all
+// but a narrow one). A piece far out (towards a pole, or towards infinity on a polynomial curve)
+// clears with one: make_plan finds a radius R about the origin it stays outside (H0 - R^2 Hw
+// has positive coefficients), and |P - P0| >= R - |P0|. A piece none of these clears is halved
+// (de Casteljau) a few times per point.
+#include "plan_data.hpp"
+
+namespace bezinv::detail {
+
+// Pieces per half (speed only: more store more coefficients, fewer need more halving), each
+// halved at plan time up to kExtensionMaxPlanHalvings times while its weights are of both signs.
+inline constexpr int kExtensionPieces = 8;
+inline constexpr int kExtensionMaxPlanHalvings = 5;
+// How many times a piece that is not yet clear may be halved for one point.
+inline constexpr int kExtensionMaxHalvings = 8;
+
+// Fills plan.extension_degree, extension_h, extension_scale and extension_boxes (degree >= 2).
+void extension_pieces(PlanData& plan);
+
+// Whether no point of the curve with t outside [0, 1] (nor at t = infinity) is within `radius` of
+// (u0, v0), normalized coordinates. False when it cannot tell (a piece still undecided after
+// kExtensionMaxHalvings halvings, a coefficient within its rounding) as well as when one is.
+bool extension_clear(const PlanData& plan, double u0, double v0, double radius);
+
+}  // namespace bezinv::detail

@@ -1,0 +1,102 @@
+#include "pipeline/off_curve_path.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "bezinv/kernels/batch.hpp"
+#include "bezinv/tolerances.hpp"
+#include "extension.hpp"
+#include "pipeline/candidate.hpp"
+#include "refine.hpp"
+#include "stationary_points.hpp"
+
+namespace bezinv::detail {
+namespace {
+
+// A start for Newton towards the nearest point of (u0, v0): the nearest of every `stride`-th
+// sample of the curve (plan.nearest_samples), moved to the vertex of the parabola through the
+// squared distances of it and its two neighbours (kept within one spacing of it).
+double nearest_sample(const PlanData& plan, double u0, double v0, int stride) {
+  const double* p = plan.nearest_samples.data();
+  const int last = static_cast<int>(plan.nearest_samples.size() / 2) - 1;
+  const auto distance2 = [&](int k) {
+    const double dx = p[2 * k] - u0, dy = p[2 * k + 1] - v0;
+    return dx * dx + dy * dy;
+  };
+  double best = std::numeric_limits<double>::infinity();
+  int at = 0;
+  for (int k = 0; k <= last; k += stride)
+    if (const double d2 = distance2(k); d2 < best) best = d2, at = k;
+  double t = static_cast<double>(at) / last;
+  if (at >= stride && at + stride <= last) {
+    const double before = distance2(at - stride), after = distance2(at + stride);
+    const double curvature = before - 2 * best + after;
+    if (curvature > 0) t += std::clamp(0.5 * (before - after) / curvature, -1.0, 1.0) * stride / last;
+  }
+  return t;
+}
+
+}  // namespace
+
+void off_curve_path(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
+                    PointResult* results, StageClock& clock) {
+  // Both proofs hold for a radius a little above the tolerance: a distance computed at any t is
+  // within ~n eps of the true one (normalized coordinates), far below kIsolationMargin.
+  const double tolerance = normalized_tolerance(plan, options);
+  const double radius = tolerance * (1 + kIsolationMargin) + kIsolationMargin;
+
+  // 1. A start per lane, compacted: where the fast path's refinement ended on the segment (a
+  //    local minimum of the distance, often the nearest), else near the nearest sample.
+  //    The lanes the fast path refined come first (their t and distance are refine_parameter's
+  //    already), then those that need Newton.
+  std::array<std::uint8_t, kBatchLanes> lane_of;
+  std::array<double, kBatchLanes> u, v, t, distance;
+  std::size_t m = 0;
+  const auto take = [&](std::size_t l) {
+    lane_of[m] = static_cast<std::uint8_t>(l);
+    u[m] = w.u[l], v[m] = w.v[l], t[m] = w.t_refined[l], distance[m] = w.distance[l];
+    ++m;
+  };
+  const auto eligible = [&](std::size_t l) {
+    return w.active[l] && std::max(std::abs(w.u[l]), std::abs(w.v[l])) <= kOffCurvePathMaxCoordinate;
+  };
+  const auto refined = [&](std::size_t l) {
+    return w.t_refined[l] >= 0.0 && w.t_refined[l] <= 1.0 && std::isfinite(w.distance[l]);
+  };
+  for (std::size_t l = 0; l < count; ++l)
+    if (eligible(l) && refined(l)) take(l);
+  const std::size_t newton_from = m;
+  for (std::size_t l = 0; l < count; ++l)
+    if (eligible(l) && !refined(l)) {
+      take(l);
+      t[m - 1] = nearest_sample(plan, u[m - 1], v[m - 1], kNearestSamplesPerDegree / 4);
+    }
+  if (m == 0) return clock.lap(&StageSeconds::off_curve);
+
+  // 2. Newton from the starts, lane-batched (refine_parameter's numbers).
+  if (m > newton_from)
+    kernels::active_implementation().rational_newton(kernel_curve(plan), kNewtonSettings, m - newton_from,
+                                                     u.data() + newton_from, v.data() + newton_from,
+                                                     t.data() + newton_from, distance.data() + newton_from);
+
+  // 3. Per lane, the proofs: the refined start as the certified search's hint (usually the
+  //    nearest point already, so the search only rules the other pieces out), then the extension.
+  for (std::size_t k = 0; k < m; ++k) {
+    const NearestOnSegment nearest = certified_nearest_on_segment(plan, u[k], v[k], t[k], distance[k]);
+    if (!nearest.certified || !(nearest.distance > radius) || !extension_clear(plan, u[k], v[k], radius)) continue;
+    const std::size_t l = lane_of[k];
+    w.active[l] = 0;
+    PointResult& r = results[l];
+    r.t = nearest.t;
+    // Measured as the SVD path measures its nearest point (the same bits for the same t).
+    r.residual = detail::distance(plan, u[k], v[k], nearest.t) * plan.scale;
+    r.status = Status::off_curve;
+    r.path = Path::nearest;
+    r.sigma_min = r.sigma_next = PointResult::nan;
+  }
+  clock.lap(&StageSeconds::off_curve);
+}
+
+}  // namespace bezinv::detail
