@@ -496,13 +496,14 @@ bool by_distance(const PointResult& r) {
 }
 
 // The off-curve path's row against the SVD path's: a nearest point of the segment as near as the
-// SVD path's, to the rounding of evaluating the curve (64 ulps of its size, `diagonal`). Usually
+// SVD path's, to the rounding of evaluating the curve (64 ulps of its size, `diagonal`, or of the
+// distance if larger). Usually
 // the same point (t equal but for Newton's last bits from different starts); where another
 // parameter is as near (a point on an axis of symmetry) either is the answer.
 ::testing::AssertionResult same_nearest_point(const PointResult& distance_row, const PointResult& svd, double diagonal) {
   if (svd.status != Status::off_curve || svd.path != Path::nearest)
     return ::testing::AssertionFailure() << "the SVD path answered " << to_string(svd.status) << " by " << to_string(svd.path);
-  const double rounding = 64 * std::numeric_limits<double>::epsilon() * diagonal;
+  const double rounding = 64 * std::numeric_limits<double>::epsilon() * std::max(diagonal, svd.residual);
   if (std::abs(distance_row.residual - svd.residual) <= rounding) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << std::setprecision(17) << "by distance t " << distance_row.t << " residual "
                                        << distance_row.residual << ", SVD path t " << svd.t << " residual " << svd.residual;
