@@ -103,29 +103,36 @@ void extension_pieces(PlanData& plan) {
                                              on_half(plan.y_num, half, false), on_half(plan.y_den, half, false)};
     const std::array<BernsteinPoly, 4> curve_bound{on_half(plan.x_num, half, true), on_half(plan.x_den, half, true),
                                                    on_half(plan.y_num, half, true), on_half(plan.y_den, half, true)};
-    // The piece [a, b] of this half, halved while its box does not hold it (a weight of the other
-    // sign: a pole nearby) and it is wider than 2^-kExtensionMaxPlanHalvings of a first piece, so
-    // that a pole costs the per-point h test only on a narrow piece.
+    // The piece [a, b] of this half, halved (up to kExtensionMaxPlanHalvings times) while neither
+    // quick test would clear it for points near the curve: its far radius is below the curve's
+    // size, and its box does not hold it (a weight of the other sign: a pole nearby) or is wider
+    // than kExtensionBoxRatio of the curve. Points near the curve then pay the h test only on a
+    // few narrow pieces.
     const auto add = [&](auto&& self, double a, double b, int halvings) -> void {
       std::array<BernsteinPoly, 4> bounds;
       for (int which = 0; which < 4; ++which) bounds[which] = restrict_to(curve_bound[which], a, b);
       const std::array<double, 4> box = control_box(restrict_to(curve[0], a, b), restrict_to(curve[1], a, b),
                                                     restrict_to(curve[2], a, b), restrict_to(curve[3], a, b), bounds);
-      if (box[0] != box[0] && halvings < kExtensionMaxPlanHalvings) {
-        self(self, a, 0.5 * (a + b), halvings + 1);
-        self(self, 0.5 * (a + b), b, halvings + 1);
-        return;
-      }
       std::array<BernsteinPoly, 4> on_piece;
       std::array<double, 4> scale;
       for (int which = 0; which < 4; ++which) {
         on_piece[which] = restrict_to(h[which], a, b);
         scale[which] = max_abs(restrict_to(h_bound[which], a, b));
+      }
+      const double far2 = far_radius2(on_piece[0], on_piece[3], scale[0], scale[3]);
+      const double size = plan.normalized_diagonal;
+      const bool wide = !(std::hypot(box[1] - box[0], box[3] - box[2]) <= kExtensionBoxRatio * size);  // NaN: wide
+      if (far2 < size * size && wide && halvings < kExtensionMaxPlanHalvings) {
+        self(self, a, 0.5 * (a + b), halvings + 1);
+        self(self, 0.5 * (a + b), b, halvings + 1);
+        return;
+      }
+      for (int which = 0; which < 4; ++which) {
         plan.extension_h.insert(plan.extension_h.end(), on_piece[which].begin(), on_piece[which].end());
         plan.extension_scale.push_back(scale[which]);
       }
       plan.extension_boxes.insert(plan.extension_boxes.end(), box.begin(), box.end());
-      plan.extension_far2.push_back(far_radius2(on_piece[0], on_piece[3], scale[0], scale[3]));
+      plan.extension_far2.push_back(far2);
     };
     for (int k = 0; k < kExtensionPieces; ++k)
       add(add, static_cast<double>(k) / kExtensionPieces, static_cast<double>(k + 1) / kExtensionPieces, 0);

@@ -35,9 +35,12 @@
 namespace bezinv::detail {
 
 // Pieces per half (speed only: more store more coefficients, fewer need more halving), each
-// halved at plan time up to kExtensionMaxPlanHalvings times while its weights are of both signs.
+// halved at plan time up to kExtensionMaxPlanHalvings times while the quick tests would not clear
+// it for points near the curve (extension_pieces says when; kExtensionBoxRatio: a box wider than
+// this fraction of the curve's diagonal counts as too wide).
 inline constexpr int kExtensionPieces = 8;
 inline constexpr int kExtensionMaxPlanHalvings = 5;
+inline constexpr double kExtensionBoxRatio = 0.25;
 // How many times a piece that is not yet clear may be halved for one point.
 inline constexpr int kExtensionMaxHalvings = 8;
 

@@ -229,6 +229,7 @@ PlanData make_plan_data(const Curve& given) {
     plan.nearest_samples[2 * k + 1] = p[1];
   }
 
+  detail::horner_coefficients(plan);
   detail::isolation_pieces(plan);
   detail::stationary_pieces(plan);
   detail::extension_pieces(plan);

@@ -48,6 +48,10 @@ struct PlanData {
   // max |entry| of B0, Bx, By, Bxy: a bound of B's terms before they cancel, for any point.
   std::array<double, 4> bezout_max_entries{0.0, 0.0, 0.0, 0.0};
 
+  // The normalized curve's four polynomials for Horner's rule (engine/src/refine.hpp,
+  // curve_jet_horner): per polynomial c_i C(n,i), then its first and second derivatives' alike.
+  std::vector<double> horner;
+
   // The nearest-point search's samples of the normalized curve, P(k / S) for k = 0..S as
   // (x, y) pairs (engine/src/refine.hpp): computed once here instead of for every off-curve point.
   std::vector<double> nearest_samples;

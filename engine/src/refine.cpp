@@ -151,8 +151,55 @@ Refined refine_parameter(const PlanData& plan, double u0, double v0, double t0, 
   return {t, d_current ? d : distance(plan, u0, v0, t)};
 }
 
+void horner_coefficients(PlanData& plan) {
+  // Per polynomial c (degree n): c_i C(n,i); n (c_{i+1} - c_i) C(n-1,i); n (n-1) (c_{i+2} - 2 c_{i+1}
+  // + c_i) C(n-2,i): the value, first and second derivative as sums of c'_i (1-t)^(m-i) t^i.
+  const int n = plan.degree;
+  plan.horner.clear();
+  for (const std::vector<double>* c : {&plan.x_num, &plan.x_den, &plan.y_num, &plan.y_den}) {
+    const std::vector<double>& p = *c;
+    for (int i = 0; i <= n; ++i) plan.horner.push_back(p[i] * binomial(n, i));
+    for (int i = 0; i < n; ++i) plan.horner.push_back(n * (p[i + 1] - p[i]) * binomial(n - 1, i));
+    for (int i = 0; i + 1 < n; ++i) plan.horner.push_back(n * (n - 1.0) * (p[i + 2] - 2 * p[i + 1] + p[i]) * binomial(n - 2, i));
+  }
+}
+
+CurveJet curve_jet_horner(const PlanData& plan, double t) {
+  // sum a_i (1-t)^(m-i) t^i = (1-t)^m sum a_i r^i with r = t / (1-t) for t <= 1/2, and
+  // t^m sum a_i r^(m-i) with r = (1-t) / t above: Horner's rule in r <= 1, O(m) instead of de
+  // Casteljau's O(m^2).
+  const int n = plan.degree;
+  const bool low = t <= 0.5;
+  const double r = low ? t / (1 - t) : (1 - t) / t, base = low ? 1 - t : t;
+  const auto horner = [&](const double* a, int m) {
+    double value = low ? a[m] : a[0];
+    for (int k = 1; k <= m; ++k) value = value * r + (low ? a[m - k] : a[k]);
+    return value;
+  };
+  double base_n2 = 1.0;  // base^(n-2), then base^(n-1) and base^n (n >= 1)
+  for (int k = 2; k < n; ++k) base_n2 *= base;
+  const double base_n1 = n >= 2 ? base_n2 * base : 1.0, base_n = n >= 2 ? base_n1 * base : base;
+  std::array<std::array<double, 3>, 4> jet{};  // value, first, second of x_num, x_den, y_num, y_den
+  const double* a = plan.horner.data();
+  for (int p = 0; p < 4; ++p) {
+    jet[p][0] = horner(a, n) * base_n;
+    jet[p][1] = horner(a + n + 1, n - 1) * base_n1;
+    jet[p][2] = n >= 2 ? horner(a + 2 * n + 1, n - 2) * base_n2 : 0.0;
+    a += 3 * n;
+  }
+  const auto quotient = [](const std::array<double, 3>& N, const std::array<double, 3>& D, double& x, double& dx, double& ddx) {
+    x = N[0] / D[0];
+    dx = (N[1] - D[1] * x) / D[0];
+    ddx = (N[2] - 2 * D[1] * dx - D[2] * x) / D[0];
+  };
+  CurveJet j;
+  quotient(jet[0], jet[1], j.x, j.dx, j.ddx);
+  quotient(jet[2], jet[3], j.y, j.dy, j.ddy);
+  return j;
+}
+
 bool stationary_point(const PlanData& plan, double u0, double v0, double t, double distance) {
-  const CurveJet jet = curve_jet(plan, t);
+  const CurveJet jet = curve_jet_horner(plan, t);
   const double along = (jet.x - u0) * jet.dx + (jet.y - v0) * jet.dy;
   return std::abs(along) <= kStationaryCosine * distance * length(jet.dx, jet.dy);
 }

@@ -19,6 +19,11 @@ inline kernels::RationalCurve kernel_curve(const PlanData& plan) {
 //   x' = (N' - D' x) / D,   x'' = (N'' - 2 D' x' - D'' x) / D.
 struct CurveJet { double x, y, dx, dy, ddx, ddy; };
 CurveJet curve_jet(const PlanData& plan, double t);
+// The same by Horner's rule (plan.horner, O(n) instead of O(n^2); other rounding, so not for
+// refine_parameter, whose bits the kernels reproduce): for tests of a t, not for computing one.
+CurveJet curve_jet_horner(const PlanData& plan, double t);
+// Fills plan.horner from the normalized curve (make_plan).
+void horner_coefficients(PlanData& plan);
 
 // P(t) alone (the same numbers as PlanData::normalized_point, in one fused pass).
 std::array<double, 2> curve_point(const PlanData& plan, double t);

@@ -23,6 +23,29 @@ namespace {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
+// Horner's rule (curve_jet_horner, for the stationarity test) against de Casteljau (curve_jet):
+// the same jet to the rounding of either, at every degree, over the whole segment.
+TEST(Refine, HornersJetIsDeCasteljausToRounding) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int n = 1; n <= kMaxDegree; ++n)
+    for (bool common : {true, false}) {
+      detail::PlanData plan = test_support::random_polynomials_plan(n, common, rng);
+      detail::horner_coefficients(plan);
+      for (double t : {0.0, 1.0, 0.5, unit(rng), unit(rng), unit(rng), 1e-9, 1 - 1e-9}) {
+        const detail::CurveJet a = detail::curve_jet(plan, t), b = detail::curve_jet_horner(plan, t);
+        // Relative to the sizes of the terms: |x| ~ 1, |x'| ~ n, |x''| ~ n^2 (coordinates in [-1, 1]).
+        const double bound = 1e-13 * n;
+        EXPECT_NEAR(a.x, b.x, bound) << n << " " << t;
+        EXPECT_NEAR(a.y, b.y, bound) << n << " " << t;
+        EXPECT_NEAR(a.dx, b.dx, bound * n) << n << " " << t;
+        EXPECT_NEAR(a.dy, b.dy, bound * n) << n << " " << t;
+        EXPECT_NEAR(a.ddx, b.ddx, bound * n * n) << n << " " << t;
+        EXPECT_NEAR(a.ddy, b.ddy, bound * n * n) << n << " " << t;
+      }
+    }
+}
+
 TEST(Refine, KernelGivesTheScalarRefinementsBits) {
   const kernels::NewtonSettings settings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep, kNewtonMaxHalvings,
                                          kNewtonFinalStep};

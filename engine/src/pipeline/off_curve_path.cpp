@@ -90,8 +90,7 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
     w.active[l] = 0;
     PointResult& r = results[l];
     r.t = nearest.t;
-    // Measured as the SVD path measures its nearest point (the same bits for the same t).
-    r.residual = detail::distance(plan, u[k], v[k], nearest.t) * plan.scale;
+    r.residual = nearest.distance * plan.scale;
     r.status = Status::off_curve;
     r.path = Path::nearest;
     r.sigma_min = r.sigma_next = PointResult::nan;
