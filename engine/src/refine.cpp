@@ -167,34 +167,36 @@ void horner_coefficients(PlanData& plan) {
 CurveJet curve_jet_horner(const PlanData& plan, double t) {
   // sum a_i (1-t)^(m-i) t^i = (1-t)^m sum a_i r^i with r = t / (1-t) for t <= 1/2, and
   // t^m sum a_i r^(m-i) with r = (1-t) / t above: Horner's rule in r <= 1, O(m) instead of de
-  // Casteljau's O(m^2).
+  // Casteljau's O(m^2). The four polynomials go through each level together (four independent
+  // chains of multiply-adds, not one after another).
   const int n = plan.degree;
   const bool low = t <= 0.5;
   const double r = low ? t / (1 - t) : (1 - t) / t, base = low ? 1 - t : t;
-  const auto horner = [&](const double* a, int m) {
-    double value = low ? a[m] : a[0];
-    for (int k = 1; k <= m; ++k) value = value * r + (low ? a[m - k] : a[k]);
-    return value;
-  };
   double base_n2 = 1.0;  // base^(n-2), then base^(n-1) and base^n (n >= 1)
   for (int k = 2; k < n; ++k) base_n2 *= base;
   const double base_n1 = n >= 2 ? base_n2 * base : 1.0, base_n = n >= 2 ? base_n1 * base : base;
-  std::array<std::array<double, 3>, 4> jet{};  // value, first, second of x_num, x_den, y_num, y_den
+  // Level 0: the values (degree n), 1: first derivatives (n - 1), 2: second (n - 2); polynomial p
+  // of level j starts at horner[p * 3n + offset_j].
+  std::array<std::array<double, 4>, 3> jet{};
   const double* a = plan.horner.data();
-  for (int p = 0; p < 4; ++p) {
-    jet[p][0] = horner(a, n) * base_n;
-    jet[p][1] = horner(a + n + 1, n - 1) * base_n1;
-    jet[p][2] = n >= 2 ? horner(a + 2 * n + 1, n - 2) * base_n2 : 0.0;
-    a += 3 * n;
+  const int offsets[3] = {0, n + 1, 2 * n + 1}, stride = 3 * n;
+  const double scale[3] = {base_n, base_n1, base_n2};
+  for (int level = 0; level < 3 && level <= n; ++level) {
+    const int m = n - level;
+    std::array<double, 4> value;
+    for (int p = 0; p < 4; ++p) value[p] = a[p * stride + offsets[level] + (low ? m : 0)];
+    for (int k = 1; k <= m; ++k)
+      for (int p = 0; p < 4; ++p) value[p] = value[p] * r + a[p * stride + offsets[level] + (low ? m - k : k)];
+    for (int p = 0; p < 4; ++p) jet[level][p] = value[p] * scale[level];
   }
-  const auto quotient = [](const std::array<double, 3>& N, const std::array<double, 3>& D, double& x, double& dx, double& ddx) {
-    x = N[0] / D[0];
-    dx = (N[1] - D[1] * x) / D[0];
-    ddx = (N[2] - 2 * D[1] * dx - D[2] * x) / D[0];
+  const auto quotient = [&](int num, int den, double& x, double& dx, double& ddx) {
+    x = jet[0][num] / jet[0][den];
+    dx = (jet[1][num] - jet[1][den] * x) / jet[0][den];
+    ddx = (jet[2][num] - 2 * jet[1][den] * dx - jet[2][den] * x) / jet[0][den];
   };
   CurveJet j;
-  quotient(jet[0], jet[1], j.x, j.dx, j.ddx);
-  quotient(jet[2], jet[3], j.y, j.dy, j.ddy);
+  quotient(0, 1, j.x, j.dx, j.ddx);
+  quotient(2, 3, j.y, j.dy, j.ddy);
   return j;
 }
 
