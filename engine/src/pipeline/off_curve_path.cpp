@@ -42,37 +42,40 @@ double nearest_sample(const PlanData& plan, double u0, double v0, int stride) {
 
 void off_curve_path(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
                     PointResult* results, StageClock& clock) {
+  // Points on the curve have all left the batch by now (the common case): nothing to do.
+  std::uint8_t any_active = 0;
+  for (std::size_t l = 0; l < count; ++l) any_active |= w.active[l];
+  if (!any_active) return clock.lap(&StageSeconds::off_curve);
+
   // Both proofs hold for a radius a little above the tolerance: a distance computed at any t is
   // within ~n eps of the true one (normalized coordinates), far below kIsolationMargin.
   const double tolerance = normalized_tolerance(plan, options);
   const double radius = tolerance * (1 + kIsolationMargin) + kIsolationMargin;
 
   // 1. A start per lane, compacted: where the fast path's refinement ended on the segment (a
-  //    local minimum of the distance, often the nearest), else near the nearest sample.
-  //    The lanes the fast path refined come first (their t and distance are refine_parameter's
-  //    already), then those that need Newton.
-  std::array<std::uint8_t, kBatchLanes> lane_of;
+  //    local minimum of the distance, often the nearest; its t and distance are
+  //    refine_parameter's already), else near the nearest sample (those lanes after, for Newton).
+  std::array<std::uint8_t, kBatchLanes> lane_of, newton_lane_of;
   std::array<double, kBatchLanes> u, v, t, distance;
-  std::size_t m = 0;
-  const auto take = [&](std::size_t l) {
-    lane_of[m] = static_cast<std::uint8_t>(l);
-    u[m] = w.u[l], v[m] = w.v[l], t[m] = w.t_refined[l], distance[m] = w.distance[l];
-    ++m;
-  };
-  const auto eligible = [&](std::size_t l) {
-    return w.active[l] && std::max(std::abs(w.u[l]), std::abs(w.v[l])) <= kOffCurvePathMaxCoordinate;
-  };
-  const auto refined = [&](std::size_t l) {
-    return w.t_refined[l] >= 0.0 && w.t_refined[l] <= 1.0 && std::isfinite(w.distance[l]);
-  };
-  for (std::size_t l = 0; l < count; ++l)
-    if (eligible(l) && refined(l)) take(l);
-  const std::size_t newton_from = m;
-  for (std::size_t l = 0; l < count; ++l)
-    if (eligible(l) && !refined(l)) {
-      take(l);
-      t[m - 1] = nearest_sample(plan, u[m - 1], v[m - 1], kNearestSamplesPerDegree / 4);
+  std::size_t m = 0, newton = 0;
+  for (std::size_t l = 0; l < count; ++l) {
+    if (!w.active[l] || !(std::max(std::abs(w.u[l]), std::abs(w.v[l])) <= kOffCurvePathMaxCoordinate)) continue;
+    if (w.t_refined[l] >= 0.0 && w.t_refined[l] <= 1.0 && std::isfinite(w.distance[l])) {
+      lane_of[m] = static_cast<std::uint8_t>(l);
+      u[m] = w.u[l], v[m] = w.v[l], t[m] = w.t_refined[l], distance[m] = w.distance[l];
+      ++m;
+    } else {
+      newton_lane_of[newton++] = static_cast<std::uint8_t>(l);
     }
+  }
+  const std::size_t newton_from = m;
+  for (std::size_t k = 0; k < newton; ++k) {
+    const std::size_t l = newton_lane_of[k];
+    lane_of[m] = static_cast<std::uint8_t>(l);
+    u[m] = w.u[l], v[m] = w.v[l];
+    t[m] = nearest_sample(plan, u[m], v[m], kNearestSamplesPerDegree / 4);
+    ++m;
+  }
   if (m == 0) return clock.lap(&StageSeconds::off_curve);
 
   // 2. Newton from the starts, lane-batched (refine_parameter's numbers).
