@@ -162,7 +162,8 @@ const Workload& workload(int degree, int noise_exponent) {
 
 struct Agreement {
   double agree = 0, median_dt = 0, no_answer = 0;
-  double fast_path = -1;  // bezinv only: the share of rows answered by the LU fast path
+  double fast_path = -1;    // bezinv only: the share of rows answered by the LU fast path
+  double by_distance = -1;  // bezinv only: the share answered off_curve by distance alone
 };
 
 // The untimed check: parameter(c, k) for every point of every curve against the known t. Off the
@@ -206,6 +207,7 @@ void report_agreement(benchmark::State& state, const std::string& library, int n
   state.counters["median_dt"] = it->second.median_dt;
   state.counters["no_answer"] = it->second.no_answer;
   if (it->second.fast_path >= 0) state.counters["fast_path"] = it->second.fast_path;
+  if (it->second.by_distance >= 0) state.counters["by_distance"] = it->second.by_distance;
 }
 
 // ---- bezinv ----------------------------------------------------------------------------------------
@@ -234,16 +236,18 @@ void run_bezinv(benchmark::State& state, int threads, const char* label, int noi
   state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
   report_agreement(state, label, noise_exponent, [&] {
     std::vector<std::vector<double>> t(kCurves);
-    std::size_t fast = 0;
+    std::size_t fast = 0, by_distance = 0;
     for (int curve = 0; curve < kCurves; ++curve) {
       invert(p[curve], w.points[curve], results, options);
       for (const PointResult& r : results) {
         t[curve].push_back(r.t);
         fast += r.path == Path::bezout_lu;
+        by_distance += r.path == Path::nearest && std::isnan(r.sigma_min);
       }
     }
     Agreement a = measure_agreement(w, [&](int curve, int k) { return t[curve][k]; });
     a.fast_path = static_cast<double>(fast) / (kCurves * kPointsPerCurve);
+    a.by_distance = static_cast<double>(by_distance) / (kCurves * kPointsPerCurve);
     return a;
   });
 }

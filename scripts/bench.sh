@@ -50,7 +50,7 @@ json.dump(merged, open(f"{build}/bench-results.json", "w"), indent=2)
 
 runs, noisy = {}, {}
 for b in baselines["benchmarks"]:
-    if "_noisy/" in b["name"]:  # name/degree/noise exponent
+    if "_noisy/" in b["name"] or "_mixed/" in b["name"]:  # name/degree/noise exponent
         name, degree, exponent = b["name"].rsplit("/", 2)
         noisy[(name, int(degree), int(exponent))] = b
         continue
@@ -81,13 +81,24 @@ for n in sorted({n for (_, n) in runs}):
           f"{agree(occt, n)} / {agree(sisl, n)} / {agree(one, n)} |")
 print("\nOff the curve: points moved by Gaussian noise of sigma = noise x the diagonal per coordinate; 1 thread;")
 print("agree: the answer's point at least as near as the point the noisy one was made from")
-print("| n | noise | OCCT | SISL | bezinv | ÷ OCCT | ÷ SISL | fast path | agree OCCT / SISL / bezinv |")
-print("|---|---|---|---|---|---|---|---|---|")
+print("| n | noise | OCCT | SISL | bezinv | ÷ OCCT | ÷ SISL | fast path | by distance | agree OCCT / SISL / bezinv |")
+print("|---|---|---|---|---|---|---|---|---|---|")
 names = ("BM_OCCT_ProjectPointOnCurve_noisy", "BM_SISL_ClosestPoint_noisy", "BM_Bezinv_refined_noisy")
-for n, e in sorted({(n, e) for (_, n, e) in noisy}, key=lambda k: (k[0], -k[1])):
+for n, e in sorted({(n, e) for (name, n, e) in noisy if name.endswith("_noisy")}, key=lambda k: (k[0], -k[1])):
     o, s_, b1 = (noisy.get((x, n, e), {}).get("items_per_second", float("nan")) for x in names)
     fp = noisy.get((names[2], n, e), {}).get("fast_path", float("nan"))
+    bd = noisy.get((names[2], n, e), {}).get("by_distance", float("nan"))
     ag = " / ".join(f"{100 * noisy[(x, n, e)]['agree']:.2f}%" if (x, n, e) in noisy else "-" for x in names)
-    print(f"| {n} | 1e-{e} | {si(o)} | {si(s_)} | {si(b1)} | {ratio(b1, o)} | {ratio(b1, s_)} | {100 * fp:.1f}% | {ag} |")
+    print(f"| {n} | 1e-{e} | {si(o)} | {si(s_)} | {si(b1)} | {ratio(b1, o)} | {ratio(b1, s_)} | {100 * fp:.1f}% | "
+          f"{100 * bd:.1f}% | {ag} |")
+print("\nMixed batches: every other point on the curve, the others at the noise; 1 thread. 'apart' is the rate")
+print("the two kinds would give inverted separately, half the points each: 2 / (1/on + 1/off)")
+print("| n | noise | on the curve | off it | mixed | apart | mixed ÷ apart |")
+print("|---|---|---|---|---|---|---|")
+for n, e in sorted({(n, e) for (name, n, e) in noisy if name.endswith("_mixed")}, key=lambda k: (k[0], -k[1])):
+    on, off = rate(one, n), noisy.get((names[2], n, e), {}).get("items_per_second", float("nan"))
+    mixed = noisy.get(("BM_Bezinv_refined_mixed", n, e), {}).get("items_per_second", float("nan"))
+    apart = 2 / (1 / on + 1 / off) if on == on and off == off else float("nan")
+    print(f"| {n} | 1e-{e} | {si(on)} | {si(off)} | {si(mixed)} | {si(apart)} | {ratio(mixed, apart)} |")
 print(f"\nfull results: {build}/bench-results.json")
 EOF
