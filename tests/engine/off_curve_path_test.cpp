@@ -108,20 +108,22 @@ void compare(const InversionPlan& plan, const std::vector<Point>& points, const 
 
 TEST(OffCurvePath, AnswersAsTheSvdPathAroundCurvesOfEveryKindAndDegree) {
   Tally tally;
+  // Perturbed arcs and the unit square's loopier curves, in turn by degree (both at every degree
+  // would double the time, mostly the SVD path's, for little more).
   for (CurveKind kind : kKinds)
-    for (int n = 1; n <= kMaxDegree; ++n)
-      for (auto polygon : {datasets::ControlPolygon::perturbed_arc, datasets::ControlPolygon::unit_square}) {
-        std::mt19937_64 rng(6151 + 97 * n + 13 * static_cast<int>(kind) + static_cast<int>(polygon));
-        const InversionPlan plan = make_plan(datasets::random_curve(kind, n, rng, polygon));
-        const std::vector<Point> points = hard_points(detail::plan_data(plan), rng);
-        compare(plan, points, std::string(to_string(kind)) + " degree " + std::to_string(n), tally);
-        if (HasFatalFailure()) return;
-      }
+    for (int n = 1; n <= kMaxDegree; ++n) {
+      const auto polygon = n % 2 ? datasets::ControlPolygon::perturbed_arc : datasets::ControlPolygon::unit_square;
+      std::mt19937_64 rng(6151 + 97 * n + 13 * static_cast<int>(kind) + static_cast<int>(polygon));
+      const InversionPlan plan = make_plan(datasets::random_curve(kind, n, rng, polygon));
+      const std::vector<Point> points = hard_points(detail::plan_data(plan), rng);
+      compare(plan, points, std::string(to_string(kind)) + " degree " + std::to_string(n), tally);
+      if (HasFatalFailure()) return;
+    }
   std::printf("[ measured ] %zu rows: %zu off_curve (%zu by distance alone), %zu outside_segment, %zu other\n",
               tally.rows, tally.off_curve, tally.by_distance, tally.outside_segment, tally.other);
   RecordProperty("rows", static_cast<int>(tally.rows));
   RecordProperty("by_distance", static_cast<int>(tally.by_distance));
-  EXPECT_GT(tally.rows, 8000u);
+  EXPECT_GT(tally.rows, 7000u);
   EXPECT_GT(tally.by_distance, tally.off_curve * 3 / 4);  // the comparison is about the new path
 }
 
