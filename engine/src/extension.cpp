@@ -7,6 +7,7 @@
 
 #include "bernstein_arithmetic.hpp"
 #include "bezinv/tolerances.hpp"
+#include "isolation.hpp"
 
 namespace bezinv::detail {
 namespace {
@@ -31,11 +32,18 @@ BernsteinPoly on_half(const std::vector<double>& c, int half, bool bound) {
   return out;
 }
 
-// H0, Hx, Hy, Hw of the header for one half, or with `bound` the bounds of their terms.
-std::array<BernsteinPoly, 4> clearance_polynomials(const PlanData& plan, int half, bool bound) {
-  const BernsteinPoly X = on_half(plan.x_num, half, bound), Wx = on_half(plan.x_den, half, bound),
-                      Y = on_half(plan.y_num, half, bound), Wy = on_half(plan.y_den, half, bound);
-  if (plan.common_denominator)
+// The curve's four polynomials (x_num, x_den, y_num, y_den) on one half, or their bounds.
+std::array<BernsteinPoly, 4> curve_on_half(const PlanData& plan, int half, bool bound) {
+  return {on_half(plan.x_num, half, bound), on_half(plan.x_den, half, bound), on_half(plan.y_num, half, bound),
+          on_half(plan.y_den, half, bound)};
+}
+
+// H0, Hx, Hy, Hw of the header from the curve's polynomials on a half, or with `bound` (the
+// polynomials' bounds) the bounds of their terms.
+std::array<BernsteinPoly, 4> clearance_polynomials(const std::array<BernsteinPoly, 4>& curve, bool common_denominator,
+                                                   bool bound) {
+  const auto& [X, Wx, Y, Wy] = curve;
+  if (common_denominator)
     return {combine(product(X, X), product(Y, Y), 1.0), scaled(product(X, Wx), bound ? 2.0 : -2.0),
             scaled(product(Y, Wx), bound ? 2.0 : -2.0), product(Wx, Wx)};
   const BernsteinPoly Wx2 = product(Wx, Wx), Wy2 = product(Wy, Wy);
@@ -93,16 +101,13 @@ void extension_pieces(PlanData& plan) {
   plan.extension_scale.clear();
   plan.extension_boxes.clear();
   plan.extension_far2.clear();
-  if (plan.degree < 2 || !plan.usable) return;
+  if (plan.degree < 2) return;
   const int m = (plan.common_denominator ? 2 : 4) * plan.degree;
   plan.extension_degree = m;
   for (int half = 0; half < kHalves; ++half) {
-    const std::array<BernsteinPoly, 4> h = clearance_polynomials(plan, half, false),
-                                       h_bound = clearance_polynomials(plan, half, true);
-    const std::array<BernsteinPoly, 4> curve{on_half(plan.x_num, half, false), on_half(plan.x_den, half, false),
-                                             on_half(plan.y_num, half, false), on_half(plan.y_den, half, false)};
-    const std::array<BernsteinPoly, 4> curve_bound{on_half(plan.x_num, half, true), on_half(plan.x_den, half, true),
-                                                   on_half(plan.y_num, half, true), on_half(plan.y_den, half, true)};
+    const std::array<BernsteinPoly, 4> curve = curve_on_half(plan, half, false), curve_bound = curve_on_half(plan, half, true);
+    const std::array<BernsteinPoly, 4> h = clearance_polynomials(curve, plan.common_denominator, false),
+                                       h_bound = clearance_polynomials(curve_bound, plan.common_denominator, true);
     // The piece [a, b] of this half, halved (up to kExtensionMaxPlanHalvings times) while neither
     // quick test would clear it for points near the curve: its far radius is below the curve's
     // size, and its box does not hold it (a weight of the other sign: a pole nearby) or is wider
@@ -156,10 +161,7 @@ bool extension_clear(const PlanData& plan, double u0, double v0, double radius) 
   for (int piece = 0; piece < pieces; ++piece) {
     if (beyond2 < plan.extension_far2[piece]) continue;
     const double* box = plan.extension_boxes.data() + piece * 4;
-    if (box[0] == box[0]) {  // not NaN: the box holds the piece
-      const double dx = std::max({box[0] - u0, u0 - box[1], 0.0}), dy = std::max({box[2] - v0, v0 - box[3], 0.0});
-      if (dx * dx + dy * dy > radius2) continue;
-    }
+    if (box[0] == box[0] && box_distance2(box, u0, v0) > radius2) continue;  // not NaN: the box holds the piece
     const double* H = plan.extension_h.data() + static_cast<std::size_t>(piece) * 4 * (m + 1);
     const double* scale = plan.extension_scale.data() + piece * 4;
     const double slack = gamma * (scale[0] + std::abs(u0) * scale[1] + std::abs(v0) * scale[2] + c_bound * scale[3]);

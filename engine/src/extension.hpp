@@ -44,7 +44,8 @@ inline constexpr double kExtensionBoxRatio = 0.25;
 // How many times a piece that is not yet clear may be halved for one point.
 inline constexpr int kExtensionMaxHalvings = 8;
 
-// Fills plan.extension_degree, extension_h, extension_scale and extension_boxes (degree >= 2).
+// Fills plan.extension_degree, extension_h, extension_scale, extension_boxes and extension_far2
+// (degree >= 2).
 void extension_pieces(PlanData& plan);
 
 // Whether no point of the curve with t outside [0, 1] (nor at t = infinity) is within `radius` of

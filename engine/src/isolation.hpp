@@ -42,6 +42,7 @@
 // that turns by 45 degrees or more, a point off the curve by more than 3. allows (about a quarter
 // of the radius of curvature, or less), or a box near P0 (a second branch passing close, which is
 // what the check is for).
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -61,6 +62,13 @@ inline double isolation_box_distance2(const PlanData& plan, int q, double u0, do
   double dx = std::abs(u0 - box[q]) - box[K + q], dy = std::abs(v0 - box[2 * K + q]) - box[3 * K + q];
   dx = dx > 0 ? dx : 0.0;
   dy = dy > 0 ? dy : 0.0;
+  return dx * dx + dy * dy;
+}
+
+// The squared distance from (u0, v0) to the box {x min, x max, y min, y max} (0 inside it): the
+// stored boxes of the certified search's pieces and of the extension's.
+inline double box_distance2(const double* box, double u0, double v0) {
+  const double dx = std::max({box[0] - u0, u0 - box[1], 0.0}), dy = std::max({box[2] - v0, v0 - box[3], 0.0});
   return dx * dx + dy * dy;
 }
 

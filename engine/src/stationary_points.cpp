@@ -77,9 +77,8 @@ double box_lower_bound(const PlanData& plan, double u0, double v0, double a, dou
 // The square of the same from the box around all of piece `piece`'s isolation boxes (one box, so
 // looser: it rules out the far pieces before the finer bound above is worth its cost).
 double piece_lower_bound2(const PlanData& plan, double u0, double v0, int piece) {
-  const double* box = plan.stationary_boxes.data() + 4 * piece;
-  const double dx = std::max({box[0] - u0, u0 - box[1], 0.0}), dy = std::max({box[2] - v0, v0 - box[3], 0.0});
-  return (dx * dx + dy * dy) * ((1 - kIsolationMargin) * (1 - kIsolationMargin));
+  return box_distance2(plan.stationary_boxes.data() + 4 * piece, u0, v0) *
+         ((1 - kIsolationMargin) * (1 - kIsolationMargin));
 }
 
 // Where the control polygon of g on [a, b] (coefficients c[0..m]) first crosses from below zero to

@@ -108,7 +108,7 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
       // Off the segment at an end: the off-curve path looks at the extension (off_curve_path.hpp),
       // where settle() would walk it.
       if (at_end && w.distance[l] > tolerance) continue;
-      if (std::isfinite(w.distance[l]) && !(at_end && !(w.distance[l] <= tolerance))) {
+      if (std::isfinite(w.distance[l])) {
         c = Candidate{};
         c.t = w.t_refined[l];
         c.distance = w.distance[l];
