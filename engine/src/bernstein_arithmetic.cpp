@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 
 #include "bezinv/bernstein.hpp"
@@ -19,9 +20,15 @@ BernsteinPoly derivative(const BernsteinPoly& p, bool bound) {
 BernsteinPoly product(const BernsteinPoly& p, const BernsteinPoly& q) {
   const int a = static_cast<int>(p.size()) - 1, b = static_cast<int>(q.size()) - 1;
   BernsteinPoly out(a + b + 1, 0.0);
+  // The three rows of binomials once: above the table's rows each binomial() is a loop of its own,
+  // which in the double loop made the product O((a + b)^3).
+  assert(a >= 0 && b >= 0 && a + b <= kMaxBernsteinDegree);
+  std::array<double, kMaxBernsteinDegree + 1> ca, cb, cab;
+  for (int i = 0; i <= a; ++i) ca[i] = binomial(a, i);
+  for (int j = 0; j <= b; ++j) cb[j] = binomial(b, j);
+  for (int k = 0; k <= a + b; ++k) cab[k] = binomial(a + b, k);
   for (int i = 0; i <= a; ++i)
-    for (int j = 0; j <= b; ++j)
-      out[i + j] += binomial(a, i) * binomial(b, j) / binomial(a + b, i + j) * p[i] * q[j];
+    for (int j = 0; j <= b; ++j) out[i + j] += ca[i] * cb[j] / cab[i + j] * p[i] * q[j];
   return out;
 }
 
@@ -49,15 +56,14 @@ void split(const double* c, int m, double s, double* left, double* right) {
   }
 }
 
-BernsteinPoly restrict_to(const BernsteinPoly& p, double a, double b) {
+void halve(const BernsteinPoly& p, BernsteinPoly& left, BernsteinPoly& right) {
   const int m = static_cast<int>(p.size()) - 1;
-  BernsteinPoly left(m + 1), right(m + 1), unused(m + 1);
-  split(p.data(), m, b, left.data(), unused.data());
-  split(left.data(), m, a / b, unused.data(), right.data());
-  return right;
+  left.resize(p.size());
+  right.resize(p.size());
+  split(p.data(), m, 0.5, left.data(), right.data());
 }
 
-double max_abs(const BernsteinPoly& p) {
+double max_abs(std::span<const double> p) {
   double m = 0.0;
   for (double v : p) m = std::max(m, std::abs(v));
   return m;

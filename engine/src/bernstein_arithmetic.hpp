@@ -3,6 +3,7 @@
 // distance's derivative, the clearance of the extension): products, derivatives, subdivision.
 // Each operation has a `bound` form that applies it to absolute values with every difference a
 // sum: a bound of the terms that round, from which the callers size the slack of a sign test.
+#include <span>
 #include <vector>
 
 #include "bezinv/tolerances.hpp"
@@ -32,9 +33,11 @@ inline constexpr int kMaxBernsteinDegree = 6 * kMaxDegree;
 // polynomial c[0..m]. `right` may be `c` (halving in place); `left` must be other storage.
 void split(const double* c, int m, double s, double* left, double* right);
 
-// The coefficients of p on [a, b] (0 <= a < b <= 1), as a polynomial of [0, 1] again.
-BernsteinPoly restrict_to(const BernsteinPoly& p, double a, double b);
+// The coefficients of p on [0, 1/2] (left) and [1/2, 1] (right), each a polynomial of [0, 1]
+// again. Each entry of the triangle is (x + y) / 2: exact halvings and one rounding, so nested
+// halvings round no more per level than one split does.
+void halve(const BernsteinPoly& p, BernsteinPoly& left, BernsteinPoly& right);
 
-double max_abs(const BernsteinPoly& p);
+double max_abs(std::span<const double> p);
 
 }  // namespace bezinv::detail

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
+#include <utility>
 
 #include "bernstein_arithmetic.hpp"
 #include "bezinv/tolerances.hpp"
@@ -14,6 +17,7 @@ namespace {
 
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 constexpr int kHalves = 2;
+using Span = std::span<const double>;
 
 // The coefficients in s of one half (header): b_j = sum_{k<=j} C(j,k) (-1)^k c_{m-k} for t >= 1
 // (half 0), c_k for t <= 0 (half 1); with `bound`, the sums of the absolute values of the terms.
@@ -54,14 +58,13 @@ std::array<BernsteinPoly, 4> clearance_polynomials(const std::array<BernsteinPol
 
 // The box of a piece's control points (x from X / Wx, y from Y / Wy), widened by the rounding of
 // the coefficients; NaN where a weight is not of the piece's one sign (the box would not hold it).
-std::array<double, 4> control_box(const BernsteinPoly& X, const BernsteinPoly& Wx, const BernsteinPoly& Y,
-                                  const BernsteinPoly& Wy, const std::array<BernsteinPoly, 4>& bounds) {
+std::array<double, 4> control_box(Span X, Span Wx, Span Y, Span Wy, const std::array<Span, 4>& bounds) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::array<double, 4> box{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
                             std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
   const int n = static_cast<int>(X.size()) - 1;
   const double gamma = kStationarySignUlps * (n + 1) * kEpsilon;
-  const auto one_sign = [](const BernsteinPoly& w) {
+  const auto one_sign = [](Span w) {
     return std::all_of(w.begin(), w.end(), [](double v) { return v > 0; }) ||
            std::all_of(w.begin(), w.end(), [](double v) { return v < 0; });
   };
@@ -81,7 +84,7 @@ std::array<double, 4> control_box(const BernsteinPoly& X, const BernsteinPoly& W
 // The square of a radius R about the origin that the piece stays outside: h at P0 = 0 and r = R,
 // H0 - R^2 Hw, has all its coefficients positive beyond their rounding (0 where none is found).
 // Half the largest R^2 the coefficients allow, so the check below has room.
-double far_radius2(const BernsteinPoly& H0, const BernsteinPoly& Hw, double scale0, double scale_w) {
+double far_radius2(Span H0, Span Hw, double scale0, double scale_w) {
   const double gamma = kStationarySignUlps * static_cast<double>(H0.size()) * kEpsilon;
   double r2 = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < H0.size(); ++k)
@@ -93,59 +96,101 @@ double far_radius2(const BernsteinPoly& H0, const BernsteinPoly& Hw, double scal
   return r2;
 }
 
+// kExtensionPieces = 2^kBaseLevels: the pieces every half starts with come from halving it.
+static_assert(std::has_single_bit(static_cast<unsigned>(kExtensionPieces)));
+constexpr int kBaseLevels = std::countr_zero(static_cast<unsigned>(kExtensionPieces));
+
+// A piece of a half, every polynomial of it as a polynomial of [0, 1] again, in one block: the
+// curve's four (X, Wx, Y, Wy; degree n) and their bounds, then h's four (H0, Hx, Hy, Hw; degree
+// m) and their bounds.
+struct Piece {
+  int n = 0, m = 0;
+  std::vector<double> c;  // 8 (n + 1), then 8 (m + 1)
+
+  Piece(int n_, int m_) : n(n_), m(m_), c(8 * static_cast<std::size_t>(n + 1) + 8 * static_cast<std::size_t>(m + 1)) {}
+  Span curve(int which) const { return {c.data() + which * (n + 1), static_cast<std::size_t>(n + 1)}; }  // 4..7: bounds
+  Span h(int which) const { return {c.data() + 8 * (n + 1) + which * (m + 1), static_cast<std::size_t>(m + 1)}; }
+  double* curve_data(int which) { return c.data() + which * (n + 1); }
+  double* h_data(int which) { return c.data() + 8 * (n + 1) + which * (m + 1); }
+};
+
+// The two halves of a piece, each polynomial halved by one de Casteljau triangle at 1/2. Halving
+// rounds each coefficient once per level on the bound of its terms, which the piece's halved
+// bound polynomials carry: kBaseLevels + kExtensionMaxPlanHalvings levels stay well inside the
+// kStationarySignUlps (m + 1) ulps the sign tests allow.
+std::pair<Piece, Piece> halves(const Piece& piece) {
+  std::pair<Piece, Piece> out{Piece(piece.n, piece.m), Piece(piece.n, piece.m)};
+  for (int which = 0; which < 8; ++which) {
+    split(piece.curve(which).data(), piece.n, 0.5, out.first.curve_data(which), out.second.curve_data(which));
+    split(piece.h(which).data(), piece.m, 0.5, out.first.h_data(which), out.second.h_data(which));
+  }
+  return out;
+}
+
 }  // namespace
 
-void extension_pieces(PlanData& plan) {
-  plan.extension_degree = 0;
-  plan.extension_h.clear();
-  plan.extension_scale.clear();
-  plan.extension_boxes.clear();
-  plan.extension_far2.clear();
+void extension_pieces(const PlanData& plan, OffCurveData& data) {
+  data.extension_degree = 0;
+  data.extension_h.clear();
+  data.extension_scale.clear();
+  data.extension_boxes.clear();
+  data.extension_far2.clear();
   if (plan.degree < 2) return;
   const int m = (plan.common_denominator ? 2 : 4) * plan.degree;
-  plan.extension_degree = m;
+  data.extension_degree = m;
   for (int half = 0; half < kHalves; ++half) {
-    const std::array<BernsteinPoly, 4> curve = curve_on_half(plan, half, false), curve_bound = curve_on_half(plan, half, true);
+    const std::array<BernsteinPoly, 4> curve = curve_on_half(plan, half, false),
+                                       curve_bound = curve_on_half(plan, half, true);
     const std::array<BernsteinPoly, 4> h = clearance_polynomials(curve, plan.common_denominator, false),
                                        h_bound = clearance_polynomials(curve_bound, plan.common_denominator, true);
-    // The piece [a, b] of this half, halved (up to kExtensionMaxPlanHalvings times) while neither
-    // quick test would clear it for points near the curve: its far radius is below the curve's
-    // size, and its box does not hold it (a weight of the other sign: a pole nearby) or is wider
-    // than kExtensionBoxRatio of the curve. Points near the curve then pay the h test only on a
-    // few narrow pieces.
-    const auto add = [&](auto&& self, double a, double b, int halvings) -> void {
-      std::array<BernsteinPoly, 4> bounds;
-      for (int which = 0; which < 4; ++which) bounds[which] = restrict_to(curve_bound[which], a, b);
-      const std::array<double, 4> box = control_box(restrict_to(curve[0], a, b), restrict_to(curve[1], a, b),
-                                                    restrict_to(curve[2], a, b), restrict_to(curve[3], a, b), bounds);
-      std::array<BernsteinPoly, 4> on_piece;
-      std::array<double, 4> scale;
-      for (int which = 0; which < 4; ++which) {
-        on_piece[which] = restrict_to(h[which], a, b);
-        scale[which] = max_abs(restrict_to(h_bound[which], a, b));
+    Piece whole(plan.degree, m);
+    for (int which = 0; which < 4; ++which) {
+      std::copy(curve[which].begin(), curve[which].end(), whole.curve_data(which));
+      std::copy(curve_bound[which].begin(), curve_bound[which].end(), whole.curve_data(4 + which));
+      std::copy(h[which].begin(), h[which].end(), whole.h_data(which));
+      std::copy(h_bound[which].begin(), h_bound[which].end(), whole.h_data(4 + which));
+    }
+    // The half cut into kExtensionPieces pieces (kBaseLevels halvings), each piece halved again
+    // (up to kExtensionMaxPlanHalvings times) while neither quick test would clear it for points
+    // near the curve: its far radius is below the curve's size, and its box does not hold it (a
+    // weight of the other sign: a pole nearby) or is wider than kExtensionBoxRatio of the curve.
+    // Points near the curve then pay the h test only on a few narrow pieces. Depth first, left
+    // half first: the pieces are stored in the order of s.
+    const auto add = [&](auto&& self, const Piece& piece, int level) -> void {
+      if (level < kBaseLevels) {
+        const auto [left, right] = halves(piece);
+        self(self, left, level + 1);
+        self(self, right, level + 1);
+        return;
       }
-      const double far2 = far_radius2(on_piece[0], on_piece[3], scale[0], scale[3]);
+      const std::array<double, 4> box =
+          control_box(piece.curve(0), piece.curve(1), piece.curve(2), piece.curve(3),
+                      {piece.curve(4), piece.curve(5), piece.curve(6), piece.curve(7)});
+      std::array<double, 4> scale;
+      for (int which = 0; which < 4; ++which) scale[which] = max_abs(piece.h(4 + which));
+      const double far2 = far_radius2(piece.h(0), piece.h(3), scale[0], scale[3]);
       const double size = plan.normalized_diagonal;
       const bool wide = !(std::hypot(box[1] - box[0], box[3] - box[2]) <= kExtensionBoxRatio * size);  // NaN: wide
-      if (far2 < size * size && wide && halvings < kExtensionMaxPlanHalvings) {
-        self(self, a, 0.5 * (a + b), halvings + 1);
-        self(self, 0.5 * (a + b), b, halvings + 1);
+      if (far2 < size * size && wide && level - kBaseLevels < kExtensionMaxPlanHalvings) {
+        const auto [left, right] = halves(piece);
+        self(self, left, level + 1);
+        self(self, right, level + 1);
         return;
       }
       for (int which = 0; which < 4; ++which) {
-        plan.extension_h.insert(plan.extension_h.end(), on_piece[which].begin(), on_piece[which].end());
-        plan.extension_scale.push_back(scale[which]);
+        data.extension_h.insert(data.extension_h.end(), piece.h(which).begin(), piece.h(which).end());
+        data.extension_scale.push_back(scale[which]);
       }
-      plan.extension_boxes.insert(plan.extension_boxes.end(), box.begin(), box.end());
-      plan.extension_far2.push_back(far2);
+      data.extension_boxes.insert(data.extension_boxes.end(), box.begin(), box.end());
+      data.extension_far2.push_back(far2);
     };
-    for (int k = 0; k < kExtensionPieces; ++k)
-      add(add, static_cast<double>(k) / kExtensionPieces, static_cast<double>(k + 1) / kExtensionPieces, 0);
+    add(add, whole, 0);
   }
 }
 
 bool extension_clear(const PlanData& plan, double u0, double v0, double radius) {
-  const int m = plan.extension_degree;
+  const OffCurveData& data = off_curve_data(plan);
+  const int m = data.extension_degree;
   if (m == 0 || !std::isfinite(u0) || !std::isfinite(v0) || !(radius >= 0)) return false;
   const double radius2 = radius * radius;
   const double c = u0 * u0 + v0 * v0 - radius2, c_bound = u0 * u0 + v0 * v0 + radius2;
@@ -155,15 +200,15 @@ bool extension_clear(const PlanData& plan, double u0, double v0, double radius) 
     std::array<double, kMaxBernsteinDegree + 1> h;
   };
   std::array<Interval, kExtensionMaxHalvings + 2> stack;
-  const int pieces = static_cast<int>(plan.extension_boxes.size() / 4);
+  const int pieces = static_cast<int>(data.extension_boxes.size() / 4);
   // |P(t) - P0| >= |P(t)| - |P0| > radius wherever |P(t)| > |P0| + radius.
   const double beyond = std::sqrt(u0 * u0 + v0 * v0) + radius, beyond2 = beyond * beyond;
   for (int piece = 0; piece < pieces; ++piece) {
-    if (beyond2 < plan.extension_far2[piece]) continue;
-    const double* box = plan.extension_boxes.data() + piece * 4;
+    if (beyond2 < data.extension_far2[piece]) continue;
+    const double* box = data.extension_boxes.data() + piece * 4;
     if (box[0] == box[0] && box_distance2(box, u0, v0) > radius2) continue;  // not NaN: the box holds the piece
-    const double* H = plan.extension_h.data() + static_cast<std::size_t>(piece) * 4 * (m + 1);
-    const double* scale = plan.extension_scale.data() + piece * 4;
+    const double* H = data.extension_h.data() + static_cast<std::size_t>(piece) * 4 * (m + 1);
+    const double* scale = data.extension_scale.data() + piece * 4;
     const double slack = gamma * (scale[0] + std::abs(u0) * scale[1] + std::abs(v0) * scale[2] + c_bound * scale[3]);
     int waiting = 0;
     Interval& first = stack[waiting++];

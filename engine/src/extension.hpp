@@ -46,7 +46,7 @@ inline constexpr int kExtensionMaxHalvings = 8;
 
 // Fills plan.extension_degree, extension_h, extension_scale, extension_boxes and extension_far2
 // (degree >= 2).
-void extension_pieces(PlanData& plan);
+void extension_pieces(const PlanData& plan, OffCurveData& data);
 
 // Whether no point of the curve with t outside [0, 1] (nor at t = infinity) is within `radius` of
 // (u0, v0), normalized coordinates. False when it cannot tell (a piece still undecided after

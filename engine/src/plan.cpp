@@ -231,8 +231,6 @@ PlanData make_plan_data(const Curve& given) {
 
   detail::horner_coefficients(plan);
   detail::isolation_pieces(plan);
-  detail::stationary_pieces(plan);
-  detail::extension_pieces(plan);
   plan.straight_line = n >= 2 && on_a_line(plan);
 
   if (plan.diagonal == 0.0) {
@@ -242,6 +240,13 @@ PlanData make_plan_data(const Curve& given) {
   }
 
   return plan;
+}
+
+const OffCurveData& off_curve_data(const PlanData& plan) {
+  return plan.off_curve.get([&](OffCurveData& data) {
+    stationary_pieces(plan, data);
+    extension_pieces(plan, data);
+  });
 }
 
 }  // namespace detail

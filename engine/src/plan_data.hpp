@@ -8,6 +8,8 @@
 //               =        B0         - x0        Bx          - y0        By          + x0 y0     Bxy,
 // with Bxy = Bez(W, W) = 0 when the denominators are one W (rational Bezier), so B is affine there.
 #include <array>
+#include <memory>
+#include <mutex>
 #include <span>
 #include <string>
 #include <vector>
@@ -16,6 +18,57 @@
 #include "bezinv/plan.hpp"
 
 namespace bezinv::detail {
+
+// What only the answers off the curve need: the certified nearest point of the segment and the
+// clearance of the extension. Several times the rest of a plan to make (sign tests on many pieces
+// of polynomials of degree up to 6n), so a plan makes it on first use (off_curve_data), and plans
+// whose points are all on the curve never pay for it.
+struct OffCurveData {
+  // The certified nearest-point search (engine/src/stationary_points.hpp): on each of
+  // kStationaryPieces pieces of [0, 1], the Bernstein coefficients (degree stationary_degree) of
+  // G0, Gx, Gy, with G0 - u0 Gx - v0 Gy of the sign of the distance's derivative (piece-major:
+  // G0, Gx, Gy of piece 0, then piece 1, ...), and per piece and polynomial a bound of the terms
+  // that round in them; per piece the box around its isolation boxes (x min, x max, y min, y max).
+  // Empty (degree 0) where the plan is not usable.
+  int stationary_degree = 0;
+  std::vector<double> stationary_g, stationary_scale, stationary_boxes;
+
+  // The clearance of the extension (engine/src/extension.hpp): on each of its pieces (t >= 1,
+  // then t <= 0, each as s in [0, 1], in order) the Bernstein coefficients (degree
+  // extension_degree) of H0, Hx, Hy, Hw (piece-major), per piece and polynomial a bound of the
+  // terms that round in them, and the box of the piece's control points (x min, x max, y min,
+  // y max; NaN where its weights are not of one sign), and the square of a radius about the
+  // origin it stays outside (0: none). Empty (degree 0) below degree 2.
+  int extension_degree = 0;
+  std::vector<double> extension_h, extension_scale, extension_boxes, extension_far2;
+};
+
+// Made once, by whichever thread first asks (the plan is shared const between threads). A copy of
+// a plan starts empty and makes its own: the copy may be changed before its first use.
+class LazyOffCurveData {
+ public:
+  LazyOffCurveData() = default;
+  LazyOffCurveData(const LazyOffCurveData&) : LazyOffCurveData() {}
+  LazyOffCurveData& operator=(const LazyOffCurveData&) {
+    slot_ = std::make_unique<Slot>();
+    return *this;
+  }
+  LazyOffCurveData(LazyOffCurveData&&) noexcept = default;
+  LazyOffCurveData& operator=(LazyOffCurveData&&) noexcept = default;
+
+  template <class Make>
+  const OffCurveData& get(Make&& make) const {
+    std::call_once(slot_->once, [&] { make(slot_->data); });
+    return slot_->data;
+  }
+
+ private:
+  struct Slot {
+    std::once_flag once;
+    OffCurveData data;
+  };
+  std::unique_ptr<Slot> slot_ = std::make_unique<Slot>();
+};
 
 struct PlanData {
   Curve curve;          // as given (validated)
@@ -65,23 +118,8 @@ struct PlanData {
   int isolation_pieces = 0;
   std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique;
 
-  // The certified nearest-point search (engine/src/stationary_points.hpp): on each of
-  // kStationaryPieces pieces of [0, 1], the Bernstein coefficients (degree stationary_degree) of
-  // G0, Gx, Gy, with G0 - u0 Gx - v0 Gy of the sign of the distance's derivative (piece-major:
-  // G0, Gx, Gy of piece 0, then piece 1, ...), and per piece and polynomial a bound of the terms
-  // that round in them; per piece the box around its isolation boxes (x min, x max, y min, y max).
-  // Empty (degree 0) where the plan is not usable.
-  int stationary_degree = 0;
-  std::vector<double> stationary_g, stationary_scale, stationary_boxes;
-
-  // The clearance of the extension (engine/src/extension.hpp): on each of its pieces (t >= 1,
-  // then t <= 0, each as s in [0, 1], in order) the Bernstein coefficients (degree
-  // extension_degree) of H0, Hx, Hy, Hw (piece-major), per piece and polynomial a bound of the
-  // terms that round in them, and the box of the piece's control points (x min, x max, y min,
-  // y max; NaN where its weights are not of one sign), and the square of a radius about the
-  // origin it stays outside (0: none). Empty (degree 0) below degree 2.
-  int extension_degree = 0;
-  std::vector<double> extension_h, extension_scale, extension_boxes, extension_far2;
+  // What only answers off the curve use, built by the first point that asks (off_curve_data).
+  LazyOffCurveData off_curve;
 
   // Power-basis leading coefficients of the four polynomials and their size bounds, for
   // detecting a degree drop of p and q at a given point (paper Sect. 4).
@@ -121,5 +159,9 @@ PlanData make_plan_data(const Curve& curve);
 
 // B(u0, v0) from the plan's matrices, for a point already in normalized coordinates.
 void bezout_at(const PlanData& plan, double u0, double v0, std::span<double> out);
+
+// The plan's OffCurveData, made on the first call (stationary_pieces, extension_pieces); safe to
+// call from any number of threads at once.
+const OffCurveData& off_curve_data(const PlanData& plan);
 
 }  // namespace bezinv::detail

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -76,8 +77,8 @@ double box_lower_bound(const PlanData& plan, double u0, double v0, double a, dou
 
 // The square of the same from the box around all of piece `piece`'s isolation boxes (one box, so
 // looser: it rules out the far pieces before the finer bound above is worth its cost).
-double piece_lower_bound2(const PlanData& plan, double u0, double v0, int piece) {
-  return box_distance2(plan.stationary_boxes.data() + 4 * piece, u0, v0) *
+double piece_lower_bound2(const OffCurveData& data, double u0, double v0, int piece) {
+  return box_distance2(data.stationary_boxes.data() + 4 * piece, u0, v0) *
          ((1 - kIsolationMargin) * (1 - kIsolationMargin));
 }
 
@@ -112,27 +113,37 @@ Refined bracketed_minimum(const PlanData& plan, double u0, double v0, double a, 
 
 }  // namespace
 
-void stationary_pieces(PlanData& plan) {
+void stationary_pieces(const PlanData& plan, OffCurveData& data) {
   const std::array<Poly, 3> g = stationary_polynomials(plan, false), bound = stationary_polynomials(plan, true);
   const int m = static_cast<int>(g[0].size()) - 1;
   // The sign of Wx^3 Wy^3 (W^3) on [0, 1], so that G0 - u0 Gx - v0 Gy has the sign of f'.
   const double sign = plan.common_denominator ? (plan.x_den[0] > 0 ? 1.0 : -1.0)
                                               : ((plan.x_den[0] > 0) == (plan.y_den[0] > 0) ? 1.0 : -1.0);
-  plan.stationary_degree = m;
-  plan.stationary_g.assign(static_cast<std::size_t>(kStationaryPieces) * 3 * (m + 1), 0.0);
-  plan.stationary_scale.assign(static_cast<std::size_t>(kStationaryPieces) * 3, 0.0);
-  plan.stationary_boxes.assign(static_cast<std::size_t>(kStationaryPieces) * 4, 0.0);
+  data.stationary_degree = m;
+  data.stationary_g.assign(static_cast<std::size_t>(kStationaryPieces) * 3 * (m + 1), 0.0);
+  data.stationary_scale.assign(static_cast<std::size_t>(kStationaryPieces) * 3, 0.0);
+  data.stationary_boxes.assign(static_cast<std::size_t>(kStationaryPieces) * 4, 0.0);
+  // g and its bounds on every piece, as polynomials of [0, 1]: the pieces of one level halved into
+  // the next's, in order (each halving rounds once per level on the bound of the terms, within the
+  // sign test's kStationarySignUlps).
+  static_assert(std::has_single_bit(static_cast<unsigned>(kStationaryPieces)));
+  std::vector<std::array<Poly, 6>> pieces{{g[0], g[1], g[2], bound[0], bound[1], bound[2]}};
+  while (static_cast<int>(pieces.size()) < kStationaryPieces) {
+    std::vector<std::array<Poly, 6>> next(2 * pieces.size());
+    for (std::size_t i = 0; i < pieces.size(); ++i)
+      for (int which = 0; which < 6; ++which) halve(pieces[i][which], next[2 * i][which], next[2 * i + 1][which]);
+    pieces = std::move(next);
+  }
   const int K = plan.isolation_pieces;
   for (int piece = 0; piece < kStationaryPieces; ++piece) {
-    const double a = static_cast<double>(piece) / kStationaryPieces, b = static_cast<double>(piece + 1) / kStationaryPieces;
     for (int which = 0; which < 3; ++which) {
-      const Poly on_piece = restrict_to(g[which], a, b);
-      double* out = plan.stationary_g.data() + (static_cast<std::size_t>(piece) * 3 + which) * (m + 1);
+      const Poly& on_piece = pieces[piece][which];
+      double* out = data.stationary_g.data() + (static_cast<std::size_t>(piece) * 3 + which) * (m + 1);
       for (int k = 0; k <= m; ++k) out[k] = sign * on_piece[k];
-      plan.stationary_scale[piece * 3 + which] = max_abs(restrict_to(bound[which], a, b));
+      data.stationary_scale[piece * 3 + which] = max_abs(pieces[piece][3 + which]);
     }
     // The box around the isolation boxes of the piece (the whole plane without them).
-    double* box = plan.stationary_boxes.data() + 4 * piece;
+    double* box = data.stationary_boxes.data() + 4 * piece;
     const double inf = std::numeric_limits<double>::infinity();
     box[0] = box[2] = K > 0 ? inf : -inf;
     box[1] = box[3] = K > 0 ? -inf : inf;
@@ -147,9 +158,10 @@ void stationary_pieces(PlanData& plan) {
 
 NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, double v0, double hint,
                                               double hint_distance) {
+  const OffCurveData& data = off_curve_data(plan);
   NearestOnSegment best;
   best.distance = std::numeric_limits<double>::infinity();
-  const int m = plan.stationary_degree;
+  const int m = data.stationary_degree;
   if (m <= 0 || !std::isfinite(u0) || !std::isfinite(v0)) return best;
   // A candidate replaces the best so far only when nearer by more than the rounding of the two
   // distances: where two parameters are equally near (a curve traced twice, a point on an axis of
@@ -181,7 +193,7 @@ NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, d
   // at; in their own order where the hint is a stationary point (then usually the answer, and
   // the bound is already tight).
   std::array<std::pair<double, int>, kStationaryPieces> order;
-  for (int piece = 0; piece < kStationaryPieces; ++piece) order[piece] = {piece_lower_bound2(plan, u0, v0, piece), piece};
+  for (int piece = 0; piece < kStationaryPieces; ++piece) order[piece] = {piece_lower_bound2(data, u0, v0, piece), piece};
   if (!(stationary_hint >= 0.0)) std::sort(order.begin(), order.end());
 
   struct Interval {
@@ -201,8 +213,8 @@ NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, d
     if (box_lower_bound(plan, u0, v0, static_cast<double>(piece) / kStationaryPieces,
                         static_cast<double>(piece + 1) / kStationaryPieces) > best.distance)
       continue;
-    const double* G = plan.stationary_g.data() + static_cast<std::size_t>(piece) * 3 * (m + 1);
-    const double* scale = plan.stationary_scale.data() + piece * 3;
+    const double* G = data.stationary_g.data() + static_cast<std::size_t>(piece) * 3 * (m + 1);
+    const double* scale = data.stationary_scale.data() + piece * 3;
     const double slack = gamma * (scale[0] + std::abs(u0) * scale[1] + std::abs(v0) * scale[2]);
     Interval& first = stack[waiting++];
     first.a = static_cast<double>(piece) / kStationaryPieces;

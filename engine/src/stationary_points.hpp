@@ -41,7 +41,7 @@ inline constexpr int kStationaryMaxHalvings = 6;
 inline constexpr double kNearestTieUlps = 8;
 
 // Fills plan.stationary_degree, stationary_g and stationary_scale from the normalized curve.
-void stationary_pieces(PlanData& plan);
+void stationary_pieces(const PlanData& plan, OffCurveData& data);
 
 struct NearestOnSegment {
   double t = 0.0, distance = 0.0;
