@@ -51,6 +51,7 @@
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
 #include "isolation.hpp"
+#include "support/sanitizers.hpp"
 
 namespace bezinv {
 namespace {
@@ -100,13 +101,17 @@ Case make_case(std::string name, Curve curve, std::uint64_t seed) {
 }
 
 // Every kind x degree 1..20 x control polygon, plus the paper's curves and the default cubic.
-// Built once (the dense sampling behind the point sets is the expensive part).
+// Built once (the dense sampling behind the point sets is the expensive part). Under the
+// sanitizers one in kSanitizerThinning of the random ones (support/sanitizers.hpp), by kind +
+// polygon + degree, so every degree is still met by some kind and polygon.
 const std::vector<Case>& random_cases() {
   static const std::vector<Case> cases = [] {
     std::vector<Case> out;
     for (CurveKind kind : kKinds)
       for (int degree = 1; degree <= 20; ++degree)
         for (ControlPolygon polygon : kPolygons) {
+          if (test_support::thinned_out(static_cast<std::size_t>(kind) + static_cast<std::size_t>(polygon) + degree))
+            continue;
           const std::uint64_t seed = seed_of(kind, degree, polygon, 0);
           std::mt19937_64 rng(seed);
           out.push_back(make_case(case_name(kind, degree, polygon, seed),
@@ -205,7 +210,7 @@ TEST(InvertProperty, OnTheSegment) {
     EXPECT_GE(points.size(), 12u) << c.name << ": the generator could not isolate enough points";
     for (const KnownPoint& k : points) expect_on_curve(c, k, invert_point(c.plan, k.point), Status::ok, m);
   }
-  EXPECT_GT(m.points, 1500);
+  EXPECT_GT(m.points, 1500 / test_support::kSanitizerThinning);
 }
 
 TEST(InvertProperty, AtAndNearTheEnds) {
@@ -222,7 +227,7 @@ TEST(InvertProperty, AtAndNearTheEnds) {
     }
   }
   std::printf("[ measured ] ends: t returned exactly 0 or 1 for %d of %d end points\n", exact_ends, ends);
-  EXPECT_GT(m.points, 600);
+  EXPECT_GT(m.points, 600 / test_support::kSanitizerThinning);
 }
 
 TEST(InvertProperty, OnTheExtension) {
@@ -232,7 +237,7 @@ TEST(InvertProperty, OnTheExtension) {
     for (const KnownPoint& k : datasets::extension_points(*c.sampling, 6, rng))
       expect_on_curve(c, k, invert_point(c.plan, k.point), Status::outside_segment, m);
   }
-  EXPECT_GT(m.points, 400);
+  EXPECT_GT(m.points, 400 / test_support::kSanitizerThinning);
 }
 
 // ---- off the curve ---------------------------------------------------------------------------------
@@ -245,7 +250,7 @@ TEST(InvertProperty, OffTheCurveAlongTheNormal) {
     const auto points = datasets::normal_offset_points(*c.sampling, 8, 10 * kDefaultRelativeTolerance, 0.1, rng);
     for (const KnownPoint& k : points) expect_nearest(c, k, invert_point(c.plan, k.point), Status::off_curve, m);
   }
-  EXPECT_GT(m.points, 600);
+  EXPECT_GT(m.points, 600 / test_support::kSanitizerThinning);
 }
 
 TEST(InvertProperty, WithinToleranceOfTheCurve) {
@@ -256,7 +261,7 @@ TEST(InvertProperty, WithinToleranceOfTheCurve) {
     for (const KnownPoint& k : datasets::normal_offset_points(*c.sampling, 4, d, d, rng))
       expect_nearest(c, k, invert_point(c.plan, k.point), Status::ok, m);
   }
-  EXPECT_GT(m.points, 300);
+  EXPECT_GT(m.points, 300 / test_support::kSanitizerThinning);
 }
 
 // ---- self-intersections ----------------------------------------------------------------------------
@@ -445,7 +450,7 @@ TEST(InvertProperty, BatchedEqualsSinglePointBitForBit) {
             << ", row " << i << " t_true " << all_t[(*order)[i]];
       }
     }
-    EXPECT_GT(points.size(), 1000u);
+    EXPECT_GT(points.size(), 1000u / test_support::kSanitizerThinning);
   }
 }
 
@@ -671,7 +676,7 @@ TEST(InvertProperty, AlgebraicParameterWithoutRefinementIsClose) {
       m.add(dt, dt / parameter_bound(c, k), std::abs(r.residual - k.distance) / c.plan.diagonal());
     }
   }
-  EXPECT_GT(m.points, 500);
+  EXPECT_GT(m.points, 500 / test_support::kSanitizerThinning);
 }
 
 }  // namespace
