@@ -38,6 +38,9 @@ Workload generate(const ProfileOptions& options) {
   for (int c = 0; c < curves; ++c) {
     const Curve curve = datasets::random_curve(options.kind, options.degree, rng, datasets::ControlPolygon::perturbed_arc);
     w.plans.push_back(make_plan(curve));
+    // Made here, untimed, as the rest of the plan: otherwise the first off-curve point of each
+    // curve would make it inside the timed inversion.
+    if (options.noise > 0) w.plans.back().prepare_off_curve();
     const std::size_t count = options.points / curves + (static_cast<std::size_t>(c) < options.points % curves);
     std::vector<double> t(count), angle(count), offset(count);
     for (std::size_t i = 0; i < count; ++i) {

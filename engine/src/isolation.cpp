@@ -320,4 +320,9 @@ bool isolated(const PlanData& plan, double u0, double v0, double t, double dista
   return true;
 }
 
+bool nearest_on_segment(const PlanData& plan, double u0, double v0, double t, double distance) {
+  if (plan.isolation_unique.empty() || !(t >= 0.0 && t <= 1.0)) return false;
+  return distance < plan.isolation_unique[piece_of(plan, t)] && isolated(plan, u0, v0, t, distance, distance);
+}
+
 }  // namespace bezinv::detail

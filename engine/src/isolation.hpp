@@ -88,4 +88,12 @@ bool isolated(const PlanData& plan, double u0, double v0, double t, double dista
 void isolated_by_far_boxes(const PlanData& plan, const double* t, const double* distance, double tolerance,
                            std::size_t count, std::uint8_t* certified);
 
+// True when P(t), at `distance` from (u0, v0), is the nearest point of the whole segment: the
+// certificate with the point's own distance for the tolerance (every box not next to t's farther
+// than it), and the distance below isolation_unique (t the only stationary point around it, a
+// strict minimum, so the distance falls towards t across its piece and the two next to it). t
+// must be a stationary point of the distance (the caller checks it). The off-curve path's quick
+// proof, before the certified search.
+bool nearest_on_segment(const PlanData& plan, double u0, double v0, double t, double distance);
+
 }  // namespace bezinv::detail

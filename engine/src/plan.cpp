@@ -269,6 +269,7 @@ int InversionPlan::degree() const { return data_->degree; }
 double InversionPlan::diagonal() const { return data_->diagonal; }
 bool InversionPlan::usable() const { return data_->usable; }
 const char* InversionPlan::reason() const { return data_->reason; }
+void InversionPlan::prepare_off_curve() const { (void)detail::off_curve_data(*data_); }
 
 InversionPlan make_plan(const Curve& curve) {
   return InversionPlan(std::make_shared<const detail::PlanData>(detail::make_plan_data(curve)));

@@ -305,6 +305,43 @@ TEST(Isolation, NoWalkEndsWithinTheToleranceAwayFromACertifiedParameterOffTheCur
   EXPECT_GT(refused, 50);
 }
 
+// The off-curve path's quick proof (engine/src/pipeline/off_curve_path.cpp): where
+// nearest_on_segment says so, a stationary point of the distance is the nearest point of the
+// whole segment. Checked against the distance on a grid of the segment, for points up to a tenth
+// of the curve's size off random curves with loops, where another branch is often nearer.
+TEST(Isolation, NearestOnSegmentIsTheNearestPointOfTheSegment) {
+  std::mt19937_64 rng(13);
+  int certified = 0, refused = 0;
+  for (int n : {2, 3, 4, 5, 6, 8, 10, 12, 15, 20})
+    for (int c = 0; c < 6; ++c) {
+      const detail::PlanData plan =
+          detail::plan_data(make_plan(datasets::random_curve(kKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square)));
+      constexpr int kGrid = 4000;
+      std::vector<std::array<double, 2>> grid(kGrid + 1);
+      for (int g = 0; g <= kGrid; ++g) grid[g] = plan.normalized_point(g / double(kGrid));
+      for (int k = 0; k < 40; ++k) {
+        const double t = datasets::uniform(rng, 0.0, 1.0);
+        const double off = std::copysign(std::pow(10.0, datasets::uniform(rng, -5.0, -1.0)), datasets::uniform(rng, -1.0, 1.0)) *
+                           plan.diagonal / plan.scale;
+        const auto [u0, v0] = along_normal(detail::curve_jet(plan, t), off);
+        const detail::Refined own = detail::refine_parameter(plan, u0, v0, t, true);
+        if (!(own.t > 0 && own.t < 1) || !detail::stationary_point(plan, u0, v0, own.t, own.distance) ||
+            !detail::nearest_on_segment(plan, u0, v0, own.t, own.distance)) {
+          ++refused;
+          continue;
+        }
+        ++certified;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const auto& q : grid) nearest = std::min(nearest, std::hypot(q[0] - u0, q[1] - v0));
+        EXPECT_GE(nearest, own.distance * (1 - 1e-12)) << "n " << n << " t " << own.t << " distance " << own.distance;
+      }
+    }
+  RecordProperty("certified", certified);
+  RecordProperty("refused", refused);
+  EXPECT_GT(certified, 300);
+  EXPECT_GT(refused, 300);
+}
+
 // At a double point (the two branches through one point) and next to it nothing is certified,
 // whether the two parameters are far apart (the boxes refuse) or close (the bound around t does).
 TEST(Isolation, NothingIsCertifiedAtADoublePoint) {
