@@ -82,13 +82,19 @@ std::array<double, 4> control_box(Span X, Span Wx, Span Y, Span Wy, const std::a
 }
 
 // The square of a radius R about the origin that the piece stays outside: h at P0 = 0 and r = R,
-// H0 - R^2 Hw, has all its coefficients positive beyond their rounding (0 where none is found).
-// Half the largest R^2 the coefficients allow, so the check below has room.
+// H0 - R^2 Hw, has all its coefficients positive beyond their rounding, gamma (scale0 + R^2
+// scale_w) (0 where none is found). Half the largest R^2 that allows, so the check below has
+// room: coefficient k allows R^2 < (H0_k - gamma scale0) / (Hw_k + gamma scale_w). The rounding
+// term belongs in the solve: far along the extension of a polynomial curve (t -> inf) Hw is
+// about 0 beside its bound, and R^2 from H0 / Hw alone would always fail the check.
 double far_radius2(Span H0, Span Hw, double scale0, double scale_w) {
   const double gamma = kStationarySignUlps * static_cast<double>(H0.size()) * kEpsilon;
   double r2 = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < H0.size(); ++k)
-    if (Hw[k] > 0) r2 = std::min(r2, H0[k] / Hw[k]);
+  for (std::size_t k = 0; k < H0.size(); ++k) {
+    const double room = H0[k] - gamma * scale0, per_r2 = Hw[k] + gamma * scale_w;
+    if (!(room > 0)) return 0.0;
+    if (per_r2 > 0) r2 = std::min(r2, room / per_r2);
+  }
   r2 = 0.5 * r2;
   if (!std::isfinite(r2) || !(r2 > 0)) return 0.0;
   for (std::size_t k = 0; k < H0.size(); ++k)

@@ -166,5 +166,38 @@ TEST(Extension, AHyperbolaThroughItsPoles) {
   EXPECT_GT(cleared, tried * 9 / 10);
 }
 
+// A polynomial curve's extension runs off to infinity as t grows: its pieces there are far from
+// every point near the curve, and the far radius must say so, or every such point pays the h test
+// on each of them (the Bezier kind's t >= 1 half has W = (1 - s)^n, about 0 beside its rounding
+// bound far out). Points near the middle of the curve: cleared by the quick tests (far radius,
+// box) alone on all but a few pieces, and the plan halves few pieces.
+TEST(Extension, APolynomialCurvesFarExtensionIsClearedByItsFarRadius) {
+  std::mt19937_64 rng(31);
+  int points = 0, pieces_tested = 0, pieces_left = 0;
+  for (int n = 3; n <= 20; ++n)
+    for (auto polygon : {datasets::ControlPolygon::perturbed_arc, datasets::ControlPolygon::unit_square}) {
+      const detail::PlanData plan = detail::plan_data(make_plan(datasets::random_curve(CurveKind::bezier, n, rng, polygon)));
+      const detail::OffCurveData& data = detail::off_curve_data(plan);
+      const int pieces = static_cast<int>(data.extension_far2.size());
+      EXPECT_LE(pieces, 96) << "degree " << n;
+      for (int k = 0; k < 8; ++k) {
+        const auto p = plan.normalized_point(datasets::uniform(rng, 0.3, 0.7));
+        const double off = 1e-3 * plan.normalized_diagonal, angle = datasets::uniform(rng, 0.0, 6.283185307179586);
+        const double u0 = p[0] + off * std::cos(angle), v0 = p[1] + off * std::sin(angle);
+        const double radius = 1e-9 * plan.normalized_diagonal, beyond = std::hypot(u0, v0) + radius;
+        ++points;
+        for (int piece = 0; piece < pieces; ++piece) {
+          ++pieces_tested;
+          const double* box = data.extension_boxes.data() + 4 * piece;
+          const double dx = std::max({box[0] - u0, u0 - box[1], 0.0}), dy = std::max({box[2] - v0, v0 - box[3], 0.0});
+          const bool box_clear = box[0] == box[0] && dx * dx + dy * dy > radius * radius;
+          if (!(beyond * beyond < data.extension_far2[piece]) && !box_clear) ++pieces_left;
+        }
+      }
+    }
+  RecordProperty("pieces_left", pieces_left);
+  EXPECT_LE(pieces_left, pieces_tested / 50) << "of " << pieces_tested << " (piece, point) pairs over " << points << " points";
+}
+
 }  // namespace
 }  // namespace bezinv

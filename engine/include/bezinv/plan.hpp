@@ -39,9 +39,9 @@ class InversionPlan {
   const char* reason() const;
 
   // What only points off the curve use (the certified nearest point, the clearance of the
-  // extension) is made by the first such point, and costs one to six times make_plan. This makes
-  // it now: before timing, or in parallel over many plans. Safe from any thread, any number of
-  // times (made once).
+  // extension) is made by the first such point, and costs up to about four times make_plan.
+  // This makes it now: before timing, or in parallel over many plans. Safe from any thread, any
+  // number of times (made once).
   void prepare_off_curve() const;
 
  private:
