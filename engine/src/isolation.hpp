@@ -92,8 +92,8 @@ void isolated_by_far_boxes(const PlanData& plan, const double* t, const double* 
 // certificate with the point's own distance for the tolerance (every box not next to t's farther
 // than it), and the distance below isolation_unique (t the only stationary point around it, a
 // strict minimum, so the distance falls towards t across its piece and the two next to it). t
-// must be a stationary point of the distance (the caller checks it). The off-curve path's quick
-// proof, before the certified search.
+// must be a stationary point of the distance (the caller checks it). The certified search's
+// quick proof (stationary_points.cpp).
 bool nearest_on_segment(const PlanData& plan, double u0, double v0, double t, double distance);
 
 }  // namespace bezinv::detail

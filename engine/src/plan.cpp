@@ -15,6 +15,7 @@
 #include <optional>
 #include <vector>
 
+#include "bernstein_arithmetic.hpp"
 #include "bezinv/bernstein.hpp"
 #include "bezinv/bezout.hpp"
 #include "bezinv/tolerances.hpp"
@@ -29,12 +30,6 @@ namespace bezinv {
 namespace {
 
 using Poly = std::vector<double>;
-
-double max_abs(const Poly& p) {
-  double m = 0;
-  for (double v : p) m = std::max(m, std::abs(v));
-  return m;
-}
 
 // |leading power coefficient| against what rounding of the coefficients can leave in it.
 // `magnitude` bounds the coefficients as they were before translation to the centre: a curve

@@ -20,8 +20,8 @@
 namespace bezinv::detail {
 
 // What only the answers off the curve need: the certified nearest point of the segment and the
-// clearance of the extension. Several times the rest of a plan to make (sign tests on many pieces
-// of polynomials of degree up to 6n), so a plan makes it on first use (off_curve_data), and plans
+// clearance of the extension. Up to about four times the rest of a plan to make (sign tests on
+// pieces of polynomials of degree up to 6n), so a plan makes it on first use (off_curve_data), and plans
 // whose points are all on the curve never pay for it.
 struct OffCurveData {
   // The certified nearest-point search (engine/src/stationary_points.hpp): on each of

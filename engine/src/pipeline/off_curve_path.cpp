@@ -8,7 +8,6 @@
 #include "bezinv/kernels/batch.hpp"
 #include "bezinv/tolerances.hpp"
 #include "extension.hpp"
-#include "isolation.hpp"
 #include "pipeline/candidate.hpp"
 #include "refine.hpp"
 #include "stationary_points.hpp"
@@ -85,16 +84,11 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
                                                      u.data() + newton_from, v.data() + newton_from,
                                                      t.data() + newton_from, distance.data() + newton_from);
 
-  // 3. Per lane, the proofs: that the refined start is the nearest point of the segment, by the
-  //    isolation certificate where it applies (a point near one branch: one comparison, most
-  //    lanes), else by the certified search with it as the hint (usually the nearest point
-  //    already, so the search only rules the other pieces out); then the extension.
+  // 3. Per lane, the proofs: the refined start as the certified search's hint (usually the
+  //    nearest point already: the isolation certificate proves it at once near one branch, the
+  //    search over the pieces elsewhere), then the extension.
   for (std::size_t k = 0; k < m; ++k) {
-    NearestOnSegment nearest;
-    if (stationary_point(plan, u[k], v[k], t[k], distance[k]) && nearest_on_segment(plan, u[k], v[k], t[k], distance[k]))
-      nearest = {t[k], distance[k], true};
-    else
-      nearest = certified_nearest_on_segment(plan, u[k], v[k], t[k], distance[k]);
+    const NearestOnSegment nearest = certified_nearest_on_segment(plan, u[k], v[k], t[k], distance[k]);
     if (!nearest.certified || !(nearest.distance > radius) || !extension_clear(plan, u[k], v[k], radius)) continue;
     const std::size_t l = lane_of[k];
     w.active[l] = 0;
