@@ -26,7 +26,8 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 build="${BEZINV_BUILD_DIR:-build}"
-configure=$(cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF -DBEZINV_BUILD_BENCH=ON -DBEZINV_BUILD_BASELINES=ON -DBEZINV_KERNEL_TARGETS=all)
+source scripts/generator.sh
+configure=$(cmake $(generator_args "$build") -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF -DBEZINV_BUILD_BENCH=ON -DBEZINV_BUILD_BASELINES=ON -DBEZINV_KERNEL_TARGETS=all)
 if ! grep -q "bezinv baselines: OpenCASCADE ON, SISL ON" <<<"$configure"; then
   echo "bench: CMake did not find OpenCASCADE and SISL:" >&2
   grep "bezinv baselines" <<<"$configure" >&2 || true

@@ -4,6 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF >/dev/null
+source scripts/generator.sh
+cmake $(generator_args build) -S . -B build -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF >/dev/null
 cmake --build build -j"$(nproc)" --target bezinv
 ./build/bezinv demo "$@"

@@ -34,8 +34,9 @@ elif [ $# -ge 1 ]; then
 fi
 
 bash scripts/setup.sh
+source scripts/generator.sh
 configure() {  # source dir, build dir
-  cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF -DBEZINV_BUILD_TESTS=OFF \
+  cmake $(generator_args "$2") -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF -DBEZINV_BUILD_TESTS=OFF \
         -DBEZINV_BUILD_BENCH=OFF -DBEZINV_KERNEL_TARGETS=all >/dev/null
   cmake --build "$2" -j"$jobs" --target bezinv >/dev/null
 }

@@ -2,7 +2,7 @@
 # Installs what bezinv needs to build, test and benchmark, from Debian packages only.
 # Safe to run again: apt-get skips what is already there.
 set -euo pipefail
-packages=(g++ cmake make git pkg-config
+packages=(g++ cmake make ninja-build git pkg-config
           libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev
           libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev libmpfr-dev
           libhwy-dev)

@@ -1,5 +1,6 @@
-// The seed kernel (kernels::Implementation::null_vector_seed: L D L^T without pivoting) on the
-// matrices it is used for: Bezout matrices of points on random curves, constructed from a known t.
+// The seed kernels (kernels::Implementation::null_vector_seed: L D L^T without pivoting, and
+// bezout_null_vector_seed, the same on B formed from the plan, where the engine uses it) on the
+// matrices they are used for: Bezout matrices of points on random curves, constructed from a known t.
 // The engine's answers do not depend on how good the seed is (every lane the isolation
 // certificate does not settle is redone pivoted), so the other tests would not notice a poor one:
 // this one does. Newton from the seed must land on the known parameter, as it does from the
@@ -47,7 +48,14 @@ TEST(NullVectorSeed, RefinesToTheKnownParameterOnBezoutMatrices) {
             for (std::size_t i = 0; i < nn; ++i) B[i * stride + l] = entries[i];
           }
           for (const kernels::Implementation* impl : kernels::available_implementations()) {
-            impl->null_vector_seed(n, kLanes, stride, B.data(), z.data(), defect.data(), residual.data());
+            if (n <= kernels::kNullVectorSeedMaxSize) {
+              impl->null_vector_seed(n, kLanes, stride, B.data(), z.data(), defect.data(), residual.data());
+            } else {
+              std::vector<double> poison(kLanes);
+              impl->bezout_null_vector_seed(n, kLanes, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
+                                            plan.common_denominator ? nullptr : plan.Bxy.data(), u.data(), v.data(),
+                                            z.data(), defect.data(), residual.data(), poison.data());
+            }
             for (std::size_t l = 0; l < kLanes; ++l) {
               std::vector<double> lane(n);
               for (int r = 0; r < n; ++r) lane[r] = z[r * stride + l];

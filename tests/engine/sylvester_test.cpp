@@ -16,6 +16,7 @@
 #include "support/exact.hpp"
 #include "support/measure.hpp"
 #include "support/random_polynomial.hpp"
+#include "support/sanitizers.hpp"
 
 namespace bezinv {
 namespace {
@@ -42,6 +43,8 @@ TEST(SylvesterMatrix, MatchesExactDefinitionForAllDegreePairs) {
   for (auto mk : {std::pair{32, 32}, std::pair{32, 31}, std::pair{29, 32}, std::pair{32, 1}}) sizes.push_back(mk);
   for (auto [m, k] : sizes) {
     const std::vector<double> p = random_coefficients(rng, m), q = random_coefficients(rng, k);
+    // Under the sanitizers the pairs with m + k a multiple of 4 (every m and every k) and the large.
+    if (m <= 16 && k <= 16 && test_support::thinned_out(static_cast<std::size_t>(m + k))) continue;
     const exact::Matrix ref = exact::sylvester(exact::to_exact(p), exact::to_exact(q));
     const std::vector<double> s = engine_sylvester(p, q);
     const int size = m + k;

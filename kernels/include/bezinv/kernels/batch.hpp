@@ -29,8 +29,9 @@ inline constexpr int kSymmetricSvdMinSize = 2;            // symmetric_svd (Eige
 inline constexpr int kSymmetricSvdMaxSize = 16;
 inline constexpr int kNullVectorMinSize = 2;              // null_vector
 inline constexpr int kNullVectorMaxSize = kMaxBatchSize;
-inline constexpr int kNullVectorSeedMinSize = 3;          // null_vector_seed (n = 3: the adjugate)
-inline constexpr int kNullVectorSeedMaxSize = kMaxBatchSize;
+inline constexpr int kNullVectorSeedMinSize = 3;          // null_vector_seed (n = 3: the adjugate); the
+inline constexpr int kNullVectorSeedMaxSize = 8;          // engine forms B in the seed from n = 8 on (8 is
+                                                          // here for the test that the two seeds agree)
 inline constexpr int kBezoutNullVectorSeedMinSize = 8;    // bezout_null_vector_seed
 inline constexpr int kBezoutNullVectorSeedMaxSize = kMaxBatchSize;
 inline constexpr int kBezoutMatrixMinSize = 2;            // bezout_matrix
