@@ -7,12 +7,6 @@
 namespace bezinv::datasets {
 namespace {
 
-Real binomial_ld(int n, int k) {
-  Real b = 1;
-  for (int j = 1; j <= k; ++j) b = b * (n - k + j) / j;  // exact: every prefix is an integer
-  return b;
-}
-
 // Error-free transformations in long double (Knuth's TwoSum, Dekker's TwoProduct with the split
 // factor 2^32 + 1 for a 64-bit significand): a + b = s + e and a * b = p + e exactly.
 void two_sum(Real a, Real b, Real& s, Real& e) {
@@ -63,10 +57,17 @@ struct Jet1 { Real value, first, second; };
 Jet1 jet(std::span<const double> p, Real t) {
   const int n = static_cast<int>(p.size()) - 1;
   const Real c = 1 - t, s = t;
+  // c^k and s^k by running products (std::pow on long double, twice per term, was most of the
+  // stress tool's generation time).
+  std::array<Real, kMaxDegree + 1> cp{}, sp{};
+  cp[0] = sp[0] = 1;
+  for (int k = 1; k <= n; ++k) cp[k] = cp[k - 1] * c, sp[k] = sp[k - 1] * s;
   auto sum = [&](int degree, auto&& coefficient) {
-    Real total = 0;
-    for (int i = 0; i <= degree; ++i)
-      total += binomial_ld(degree, i) * std::pow(c, degree - i) * std::pow(s, i) * coefficient(i);
+    Real total = 0, binomial = 1;  // C(degree, i), by C(d, i) = C(d, i-1) (d - i + 1) / i (exact)
+    for (int i = 0; i <= degree; ++i) {
+      if (i > 0) binomial = binomial * (degree - i + 1) / i;
+      total += binomial * cp[degree - i] * sp[i] * coefficient(i);
+    }
     return total;
   };
   Jet1 j{};

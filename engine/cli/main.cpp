@@ -12,6 +12,7 @@
 #include <span>
 #include <string>
 #include <system_error>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -28,6 +29,7 @@
 #include "bezinv/tolerances.hpp"
 #include "demo.hpp"
 #include "profile.hpp"
+#include "stress.hpp"
 
 // The project version from CMake when the build passes it; otherwise the one in CMakeLists.txt.
 #ifndef BEZINV_VERSION
@@ -313,6 +315,33 @@ int main(int argc, char** argv) {
   profile->add_flag("--svd-only", profile_svd_only, "Every point by the SVD (no LU fast path)");
   profile->add_flag("--json", profile_options.json, "One JSON object on stdout");
 
+  bezinv::cli::StressOptions stress_options;
+  std::string stress_families = "on_curve,near_ends,extension,noisy,far",
+              stress_kinds = "bezier,rational_bezier,rational", stress_degrees = "1-24", stress_paths = "default";
+  long long stress_threads = 0;
+  CLI::App* stress = app.add_subcommand(
+      "stress", "Invert points of known answers family by family; report each answer's error against a "
+                "high-precision truth, and every wrong status (exit 1 if any)");
+  stress->add_option("--families", stress_families, "Comma-separated: on_curve,near_ends,extension,noisy,far")
+      ->capture_default_str();
+  stress->add_option("--kinds", stress_kinds, "Comma-separated curve kinds")->capture_default_str();
+  stress->add_option("--degrees", stress_degrees, "Degree N or range LO-HI")->capture_default_str();
+  stress->add_option("--points", stress_options.points, "Points in all, spread over the cells")
+      ->check(positive)
+      ->capture_default_str();
+  stress->add_option("--curves", stress_options.curves, "Random curves per family, kind and degree")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  stress->add_option("--seed", stress_options.seed, "Random seed")->capture_default_str();
+  stress->add_option("--threads", stress_threads, threads_help)->check(non_negative)->capture_default_str();
+  stress->add_option("--paths", stress_paths, "Comma-separated: default,svd-only,no-refine")->capture_default_str();
+  stress
+      ->add_option("--tol", stress_options.relative_tolerance,
+                   "On-curve tolerance relative to the control-point bounding-box diagonal")
+      ->check(CLI::Validator(check_relative_tolerance, "REL>0"))
+      ->capture_default_str();
+  stress->add_flag("--json", stress_options.json, "One JSON object on stdout");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -320,6 +349,15 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (stress->parsed()) {
+      stress_options.threads = checked_threads(stress_threads);
+      const ParallelismLimit parallelism(stress_options.threads);
+      stress_options.families = bezinv::cli::parse_families(stress_families);
+      stress_options.kinds = bezinv::cli::parse_kinds(stress_kinds);
+      stress_options.paths = bezinv::cli::parse_paths(stress_paths);
+      std::tie(stress_options.min_degree, stress_options.max_degree) = bezinv::cli::parse_degrees(stress_degrees);
+      return bezinv::cli::run_stress(stress_options);
+    }
     if (invert->parsed()) {
       invert_arguments.threads = checked_threads(invert_threads);
       check_chunk_points(invert_arguments.chunk_points);
@@ -343,6 +381,9 @@ int main(int argc, char** argv) {
                                                                  : bezinv::CurveKind::rational_bezier;
       return bezinv::cli::run_profile(profile_options);
     }
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "bezinv: %s\n", e.what());
+    return kExitInputError;
   } catch (const bezinv::InputError& e) {
     std::fprintf(stderr, "bezinv: %s\n", e.what());
     return kExitInputError;

@@ -1,0 +1,83 @@
+#pragma once
+// The accuracy stress tool's data (`bezinv stress`, engine/cli/stress.cpp): families of points
+// whose answers are known, each row's truth computed on the double input the engine is given
+// (high_precision_nearest.hpp), and the tally of the engine's answers against it.
+//
+// The families (what each stresses, how its truth is known):
+//   on_curve   t uniform in [0,1]: the common case. P(t) made exactly and rounded; truth: the
+//              nearest curve point of the rounded input, status ok.
+//   near_ends  t within 1e-12..1e-4 of 0 or 1 (log-uniform): the ends, where the Bernstein basis is
+//              most lopsided. Truth as on_curve; status ok.
+//   extension  t in [-0.3,-0.01] u [1.01,1.3]: the curve beyond its segment. Truth as on_curve;
+//              status outside_segment.
+//   noisy      P(t0) + d N(t0), d log-uniform in 1e-12..1e-3 of the diagonal: measured points.
+//              Truth: the nearest point of the segment (the generator checks it is unambiguous by
+//              dense sampling), refined on the rounded input; status ok below half the tolerance,
+//              off_curve above twice it, either between (ambiguous); near an end of the segment
+//              whose nearest point is the end, outside_segment is right too.
+//   far        the same with d in 10..1000 diagonals: far off the curve; status off_curve.
+// Every generated point is isolated from the curve's other branches (datasets/known_point.hpp).
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <random>
+#include <string_view>
+#include <vector>
+
+#include "bezinv/curve.hpp"
+#include "bezinv/datasets/curve_sampling.hpp"
+#include "bezinv/invert.hpp"
+
+namespace bezinv::datasets {
+
+enum class Family { on_curve, near_ends, extension, noisy, far };
+inline constexpr std::array kFamilies = {Family::on_curve, Family::near_ends, Family::extension, Family::noisy,
+                                         Family::far};
+const char* to_string(Family family);
+std::optional<Family> family_from_string(std::string_view name);
+
+// One row: what the engine is given, and what it must answer.
+struct StressRow {
+  Point point;
+  Status expected = Status::ok;
+  unsigned acceptable = 0;  // the statuses that are right (bit 1 << status; `expected` among them):
+                            // more than one for a row within a margin of the tolerance (ambiguous)
+  double t_true = 0;       // the nearest parameter of `point` (high precision, rounded)
+  double distance = 0;     // |P(t_true) - point| (high precision, rounded)
+  double bound = 0;        // the accuracy model's bound on |t - t_true| (stress_bound)
+};
+
+// The accuracy model's bound on |t - t_true| for a point (x, y) whose nearest curve point has speed
+// |P'| = `speed` (docs/accuracy-model.md, "The stress tool's bound"): the parameter error that
+// rounding the input and evaluating a degree-n curve in double cause, 2 (8 + n) eps S / |P'| + 4u,
+// S = max(|x|, |y|, diagonal, `scale`), scale the evaluation's (KnownPoint::scale: the sum of the
+// absolute terms, which grows as (|1 - t| + |t|)^n on the extension).
+double stress_bound(int degree, double x, double y, double diagonal, double scale, double speed);
+
+// `count` rows of `family` on the curve (fewer where too few isolated points exist), truths at
+// high precision, statuses for the relative tolerance `relative_tolerance`.
+std::vector<StressRow> stress_rows(Family family, const CurveSampling& sampling, int count,
+                                   double relative_tolerance, std::mt19937_64& rng);
+
+inline constexpr std::size_t kStatusCount = 6;  // Status::ok .. Status::failed
+
+// The engine's answers against the truth, for one cell of the report (family x kind x degree x path).
+struct StressTally {
+  std::size_t rows = 0, ambiguous = 0;
+  std::size_t no_truth = 0;      // the reference did not converge: the row's t is not compared
+  std::size_t wrong_status = 0;  // a status not in the row's acceptable ones
+  std::size_t nan_t = 0;         // a status that carries t (ok, outside_segment, off_curve) without one
+  std::size_t missing_t2 = 0;    // double_point without t2
+  std::array<std::array<std::size_t, kStatusCount>, kStatusCount> confusion{};  // [expected][got]
+  std::array<std::array<std::size_t, kStatusCount>, kStatusCount> wrong{};      // the wrong rows alone
+  std::vector<double> dt, dt_over_bound;  // rows answered with the expected status, which carries t
+  std::vector<double> residual_error;     // |residual - true distance| / diagonal, the same rows
+  void add(const StressRow& row, const PointResult& got, double diagonal);
+};
+
+struct Quantiles {
+  double p50 = 0, p99 = 0, p999 = 0, max = 0;  // NaN when there are no values
+};
+Quantiles quantiles(std::vector<double> values);
+
+}  // namespace bezinv::datasets

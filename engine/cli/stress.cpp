@@ -1,0 +1,246 @@
+#include "stress.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include "bezinv/datasets/curve_sampling.hpp"
+#include "bezinv/datasets/high_precision_nearest.hpp"
+#include "bezinv/datasets/random_curve.hpp"
+#include "bezinv/invert.hpp"
+#include "bezinv/plan.hpp"
+
+namespace bezinv::cli {
+namespace {
+
+using datasets::Family;
+using datasets::StressRow;
+using datasets::StressTally;
+
+std::vector<std::string> split(const std::string& list) {
+  std::vector<std::string> items;
+  std::stringstream in(list);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) items.push_back(item);
+  return items;
+}
+
+// One curve of one cell and its rows.
+struct CurveRows {
+  Family family;
+  CurveKind kind;
+  int degree;
+  std::optional<InversionPlan> plan;
+  std::vector<StressRow> rows;
+};
+
+// One line of the report.
+struct Cell {
+  Family family;
+  CurveKind kind;
+  int degree;
+  StressPath path;
+  StressTally tally;
+  double seconds = 0;
+};
+
+InvertOptions options_for(StressPath path, const StressOptions& options) {
+  InvertOptions o;
+  o.relative_tolerance = options.relative_tolerance;
+  o.threads = options.threads;
+  o.fast_path = path != StressPath::svd_only;
+  o.refine = path != StressPath::no_refine;
+  return o;
+}
+
+nlohmann::json quantiles_json(const std::vector<double>& values) {
+  const datasets::Quantiles q = datasets::quantiles(values);
+  auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+  return {{"p50", number(q.p50)}, {"p99", number(q.p99)}, {"p999", number(q.p999)}, {"max", number(q.max)}};
+}
+
+}  // namespace
+
+const char* to_string(StressPath path) {
+  switch (path) {
+    case StressPath::default_path: return "default";
+    case StressPath::svd_only: return "svd-only";
+    case StressPath::no_refine: return "no-refine";
+  }
+  return "?";
+}
+
+std::vector<Family> parse_families(const std::string& list) {
+  std::vector<Family> families;
+  for (const std::string& item : split(list)) {
+    const auto family = datasets::family_from_string(item);
+    if (!family) throw std::invalid_argument("--families: unknown family '" + item + "'");
+    families.push_back(*family);
+  }
+  if (families.empty()) throw std::invalid_argument("--families: no family given");
+  return families;
+}
+
+std::vector<CurveKind> parse_kinds(const std::string& list) {
+  std::vector<CurveKind> kinds;
+  for (const std::string& item : split(list)) {
+    if (item == "bezier") kinds.push_back(CurveKind::bezier);
+    else if (item == "rational_bezier") kinds.push_back(CurveKind::rational_bezier);
+    else if (item == "rational") kinds.push_back(CurveKind::rational);
+    else throw std::invalid_argument("--kinds: unknown kind '" + item + "'");
+  }
+  if (kinds.empty()) throw std::invalid_argument("--kinds: no kind given");
+  return kinds;
+}
+
+std::vector<StressPath> parse_paths(const std::string& list) {
+  std::vector<StressPath> paths;
+  for (const std::string& item : split(list)) {
+    if (item == "default") paths.push_back(StressPath::default_path);
+    else if (item == "svd-only") paths.push_back(StressPath::svd_only);
+    else if (item == "no-refine") paths.push_back(StressPath::no_refine);
+    else throw std::invalid_argument("--paths: unknown path '" + item + "'");
+  }
+  if (paths.empty()) throw std::invalid_argument("--paths: no path given");
+  return paths;
+}
+
+std::pair<int, int> parse_degrees(const std::string& range) {
+  int lo = 0, hi = 0;
+  char extra = 0;
+  const int read = std::sscanf(range.c_str(), "%d-%d%c", &lo, &hi, &extra);
+  if (read == 1) hi = lo;
+  if ((read != 1 && read != 2) || lo < 1 || hi < lo || hi > kMaxDegree)
+    throw std::invalid_argument("--degrees: expected N or LO-HI within 1-" + std::to_string(kMaxDegree) + ", got '" +
+                                range + "'");
+  return {lo, hi};
+}
+
+int run_stress(const StressOptions& options) {
+  // 1. The curves and their rows, truths included, in parallel (the high-precision truth is the
+  //    expensive part).
+  std::vector<CurveRows> curves;
+  for (Family family : options.families)
+    for (CurveKind kind : options.kinds)
+      for (int degree = options.min_degree; degree <= options.max_degree; ++degree)
+        for (int c = 0; c < options.curves; ++c) curves.push_back({family, kind, degree, std::nullopt, {}});
+  const std::size_t per_curve = std::max<std::size_t>(1, options.points / curves.size());
+  const auto generation_start = std::chrono::steady_clock::now();
+  tbb::parallel_for(std::size_t{0}, curves.size(), [&](std::size_t i) {
+    CurveRows& c = curves[i];
+    std::mt19937_64 rng(options.seed + 1000003ULL * i);
+    // Half the curves "reasonable" (a perturbed arc), half wild (loops, close approaches).
+    const auto polygon = i % 2 ? datasets::ControlPolygon::unit_square : datasets::ControlPolygon::perturbed_arc;
+    const Curve curve = datasets::random_curve(c.kind, c.degree, rng, polygon);
+    InversionPlan plan = make_plan(curve);
+    if (!plan.usable()) return;
+    const datasets::CurveSampling sampling(curve);
+    c.rows = datasets::stress_rows(c.family, sampling, static_cast<int>(per_curve), options.relative_tolerance, rng);
+    c.plan.emplace(std::move(plan));
+  });
+  const double generation_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - generation_start).count();
+
+  // 2. Every path over every cell's curves.
+  std::vector<Cell> cells;
+  for (StressPath path : options.paths) {
+    const InvertOptions invert_options = options_for(path, options);
+    for (std::size_t first = 0; first < curves.size(); first += static_cast<std::size_t>(options.curves)) {
+      Cell cell{curves[first].family, curves[first].kind, curves[first].degree, path, {}, 0.0};
+      for (std::size_t i = first; i < first + static_cast<std::size_t>(options.curves); ++i) {
+        const CurveRows& c = curves[i];
+        if (!c.plan || c.rows.empty()) continue;
+        std::vector<Point> points;
+        for (const StressRow& row : c.rows) points.push_back(row.point);
+        std::vector<PointResult> results(points.size());
+        const auto start = std::chrono::steady_clock::now();
+        invert(*c.plan, points, results, invert_options);
+        cell.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        for (std::size_t k = 0; k < points.size(); ++k) cell.tally.add(c.rows[k], results[k], c.plan->diagonal());
+      }
+      cells.push_back(std::move(cell));
+    }
+  }
+
+  // 3. The report.
+  std::size_t rows = 0, wrong = 0, nan_t = 0, missing_t2 = 0;
+  for (const Cell& cell : cells) {
+    rows += cell.tally.rows;
+    wrong += cell.tally.wrong_status;
+    nan_t += cell.tally.nan_t;
+    missing_t2 += cell.tally.missing_t2;
+  }
+  if (options.json) {
+    nlohmann::json out;
+    out["command"] = "stress";
+    out["seed"] = options.seed;
+    out["relative_tolerance"] = options.relative_tolerance;
+    out["rows"] = rows;
+    out["wrong_status"] = wrong;
+    out["nan_t"] = nan_t;
+    out["missing_t2"] = missing_t2;
+    out["generation_seconds"] = generation_seconds;
+    out["cells"] = nlohmann::json::array();
+    for (const Cell& cell : cells) {
+      const StressTally& t = cell.tally;
+      nlohmann::json confusion = nlohmann::json::object();
+      for (std::size_t e = 0; e < datasets::kStatusCount; ++e)
+        for (std::size_t g = 0; g < datasets::kStatusCount; ++g)
+          if (t.confusion[e][g])
+            confusion[bezinv::to_string(static_cast<Status>(e))][bezinv::to_string(static_cast<Status>(g))] =
+                t.confusion[e][g];
+      out["cells"].push_back({{"family", to_string(cell.family)},
+                              {"kind", bezinv::to_string(cell.kind)},
+                              {"degree", cell.degree},
+                              {"path", to_string(cell.path)},
+                              {"rows", t.rows},
+                              {"wrong_status", t.wrong_status},
+                              {"ambiguous", t.ambiguous},
+                              {"nan_t", t.nan_t},
+                              {"missing_t2", t.missing_t2},
+                              {"no_truth", t.no_truth},
+                              {"confusion", confusion},
+                              {"abs_dt", quantiles_json(t.dt)},
+                              {"abs_dt_over_bound", quantiles_json(t.dt_over_bound)},
+                              {"residual_error_over_diagonal", quantiles_json(t.residual_error)},
+                              {"points_per_second", cell.seconds > 0 ? t.rows / cell.seconds : 0.0}});
+    }
+    std::printf("%s\n", out.dump(2).c_str());
+  } else {
+    std::printf("bezinv stress: %zu rows, seed %llu, tolerance %.3g x diagonal (truths at %d bits, made in %.1f s)\n\n",
+                rows, options.seed, options.relative_tolerance, datasets::kReferenceBits, generation_seconds);
+    std::printf("%-10s %-15s %3s %-9s %7s %5s %5s | %-31s | %-19s | %9s %9s\n", "family", "kind", "deg", "path", "rows",
+                "wrong", "ambig", "|t - t_true| p50 p99 p99.9 max", "/ bound p99.9 max", "resid", "points/s");
+    for (const Cell& cell : cells) {
+      const StressTally& t = cell.tally;
+      const datasets::Quantiles dt = datasets::quantiles(t.dt), ratio = datasets::quantiles(t.dt_over_bound),
+                                residual = datasets::quantiles(t.residual_error);
+      std::printf("%-10s %-15s %3d %-9s %7zu %5zu %5zu | %7.1e %7.1e %7.1e %7.1e | %9.2g %9.2g | %9.1e %9.3g\n",
+                  to_string(cell.family), bezinv::to_string(cell.kind), cell.degree, to_string(cell.path), t.rows,
+                  t.wrong_status, t.ambiguous, dt.p50, dt.p99, dt.p999, dt.max, ratio.p999, ratio.max, residual.p999,
+                  cell.seconds > 0 ? t.rows / cell.seconds : 0.0);
+    }
+    std::printf("\nresid: p99.9 of |residual - true distance| / diagonal. / bound: |t - t_true| over the accuracy\n"
+                "model's bound (docs/accuracy-model.md). wrong: a status the contract does not allow; ambig: rows\n"
+                "within a margin of the tolerance, where more than one status is right.\n");
+    for (const Cell& cell : cells)
+      for (std::size_t e = 0; e < datasets::kStatusCount; ++e)
+        for (std::size_t g = 0; g < datasets::kStatusCount; ++g)
+          if (cell.tally.wrong[e][g])
+            std::printf("  %s %s degree %d %s: expected %s, got %s: %zu\n", to_string(cell.family),
+                        bezinv::to_string(cell.kind), cell.degree, to_string(cell.path),
+                        bezinv::to_string(static_cast<Status>(e)), bezinv::to_string(static_cast<Status>(g)),
+                        cell.tally.wrong[e][g]);
+    std::printf("%zu of %zu rows with a wrong status, %zu without t, %zu double points without t2\n", wrong, rows,
+                nan_t, missing_t2);
+  }
+  return wrong == 0 && nan_t == 0 && missing_t2 == 0 ? 0 : 1;
+}
+
+}  // namespace bezinv::cli

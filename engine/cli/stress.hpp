@@ -1,0 +1,39 @@
+#pragma once
+// `bezinv stress`: how far each answer is from the truth, family by family (datasets/stress.hpp).
+#include <string>
+#include <vector>
+
+#include "bezinv/curve.hpp"
+#include "bezinv/datasets/stress.hpp"
+
+namespace bezinv::cli {
+
+// Which way the engine is asked: as by default, every point by the SVD, or without refinement.
+enum class StressPath { default_path, svd_only, no_refine };
+const char* to_string(StressPath path);
+
+struct StressOptions {
+  std::vector<datasets::Family> families{datasets::kFamilies.begin(), datasets::kFamilies.end()};
+  std::vector<CurveKind> kinds{CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational};
+  int min_degree = 1, max_degree = 24;
+  std::size_t points = 100'000;  // in all, spread evenly over the cells (at least one per curve)
+  int curves = 4;                // per family, kind and degree
+  unsigned long long seed = 20261203;
+  int threads = 0;
+  std::vector<StressPath> paths{StressPath::default_path};
+  double relative_tolerance = kDefaultRelativeTolerance;
+  bool json = false;
+};
+
+// Parses "a,b,c" lists and "lo-hi" degree ranges for the command line; throws std::invalid_argument
+// naming the bad item.
+std::vector<datasets::Family> parse_families(const std::string& list);
+std::vector<CurveKind> parse_kinds(const std::string& list);
+std::vector<StressPath> parse_paths(const std::string& list);
+std::pair<int, int> parse_degrees(const std::string& range);
+
+// Prints the table (or one JSON object). Returns 0 when every status was right and every t there,
+// 1 otherwise.
+int run_stress(const StressOptions& options);
+
+}  // namespace bezinv::cli
