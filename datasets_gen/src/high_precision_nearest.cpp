@@ -2,6 +2,7 @@
 
 #include <mpfr.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -92,11 +93,15 @@ double sqrt_to_double(const Big& x) {
 HighPrecisionNearest high_precision_nearest(const Curve& curve, Point point, double t_start, bool segment_only) {
   Big t(t_start);
   bool converged = false;
-  // Quadratic convergence from ~1e-6 reaches 2^-108 in about 4 steps; 60 allows slow (near
-  // degenerate) minima to creep in.
-  const Big tolerance(std::ldexp(1.0, -(kReferenceBits - 20)));
+  // Quadratic convergence from ~1e-6 reaches the working precision in about 4 steps; 60 allow slow
+  // (near degenerate) minima to creep in. The precision attainable in t is 2^-bits relative to t,
+  // or to the point's size over the speed (a curve 1e12 from the origin is known to 2^-128 1e12 in
+  // x, so to that over |P'| in t): converged 2^20 above the larger.
+  const double coordinates = std::max({std::abs(point.x), std::abs(point.y), 1.0});
   for (int iteration = 0; iteration < 60 && !converged; ++iteration) {
     const Stationarity s = stationarity(curve, point, t);
+    const double speed = std::sqrt(s.speed2.to_double());
+    const Big tolerance(std::ldexp(std::max(std::abs(t.to_double()), coordinates / speed), -(kReferenceBits - 20)));
     if (mpfr_sgn(s.derivative.get()) <= 0) break;  // not a minimum's basin: keep what we have
     const Big step = s.f / s.derivative;
     const Big next = t - step;

@@ -5,10 +5,16 @@
 #include <cmath>
 #include <limits>
 
+#include "bezinv/datasets/degree_elevation.hpp"
 #include "bezinv/datasets/high_precision_nearest.hpp"
+#include "bezinv/datasets/improper.hpp"
 #include "bezinv/datasets/off_curve_points.hpp"
 #include "bezinv/datasets/on_curve_points.hpp"
+#include "bezinv/datasets/paper_curves.hpp"
+#include "bezinv/datasets/random_curve.hpp"
 #include "bezinv/datasets/random_numbers.hpp"
+#include "bezinv/datasets/self_intersection.hpp"
+#include "bezinv/datasets/translation.hpp"
 
 namespace bezinv::datasets {
 namespace {
@@ -52,7 +58,126 @@ std::vector<KnownPoint> near_end_points(const CurveSampling& sampling, int count
   return points;
 }
 
+// On an improper curve P(t) = Q(t^2) every point is also P(-t): isolated from the rest of the curve
+// but that second parameter.
+std::vector<KnownPoint> improper_points(const CurveSampling& sampling, int count, std::mt19937_64& rng) {
+  std::vector<KnownPoint> points;
+  for (int attempt = 0; attempt < 20 * count && static_cast<int>(points.size()) < count; ++attempt) {
+    const double t = uniform(rng, 0.05, 1.0);  // away from t = 0, where t and -t meet
+    KnownPoint k = known_on_curve(sampling.curve(), t);
+    if (isolated(sampling, k.point, {t, -t})) points.push_back(k);
+  }
+  return points;
+}
+
+// Points around a crossing P(t1) = P(t2): the crossing itself, then points at 1e-9..1e-4
+// diagonals from it (log-uniform), each with both branches' nearest parameters.
+std::vector<KnownPoint> around_crossing(const CurveSampling& sampling, double t1, double t2, int count,
+                                        std::mt19937_64& rng) {
+  std::vector<KnownPoint> points = crossing_points(sampling, t1, t2, 0, 0.0, rng);  // the crossing
+  for (int i = 0; static_cast<int>(points.size()) < count && i < 4 * count; ++i) {
+    const double radius = std::pow(10.0, uniform(rng, -9.0, -4.0));
+    const std::vector<KnownPoint> one = crossing_points(sampling, t1, t2, 1, radius, rng);
+    if (one.size() == 2) points.push_back(one[1]);
+  }
+  return points;
+}
+
+// The row of a point near a crossing: each branch's distance decides (within the tolerance: near;
+// beyond twice it: far; else either).
+StressRow crossing_row(const Curve& curve, const KnownPoint& k, double diagonal, double tolerance) {
+  const HighPrecisionNearest a = high_precision_nearest(curve, k.point, k.t, false);
+  const HighPrecisionNearest b = high_precision_nearest(curve, k.point, k.t2, false);
+  StressRow row;
+  row.point = k.point;
+  const double slower = std::min(a.speed, b.speed);
+  row.bound = stress_bound(curve.degree(), k.point.x, k.point.y, diagonal, k.scale, slower);
+  const bool near_a = a.distance <= kAmbiguousBelow * tolerance, near_b = b.distance <= kAmbiguousBelow * tolerance;
+  const bool far_a = a.distance >= kAmbiguousAbove * tolerance, far_b = b.distance >= kAmbiguousAbove * tolerance;
+  const bool converged = a.converged && b.converged;
+  const HighPrecisionNearest& nearer = a.distance <= b.distance ? a : b;
+  row.distance = nearer.distance;
+  row.t_true = converged ? nearer.t : kNaN;
+  if (near_a && near_b) {
+    row.expected = Status::double_point;
+    row.t_true = converged ? a.t : kNaN;
+    row.t2_true = b.t;
+    row.distance = a.distance;  // the residual is |P(t) - P0| at the first parameter
+  } else if ((near_a && far_b) || (near_b && far_a)) {
+    row.expected = Status::ok;
+  } else if (far_a && far_b) {
+    row.expected = Status::off_curve;
+    // Both branches about as near: either is the nearest point, t is not compared.
+    if (std::abs(a.distance - b.distance) <= 1e-2 * row.distance) row.t_true = kNaN;
+  } else {
+    row.expected = near_a || near_b ? Status::ok : Status::off_curve;
+  }
+  row.acceptable = bit(row.expected);
+  if (!(near_a && near_b) && !((near_a && far_b) || (near_b && far_a)) && !(far_a && far_b))
+    row.acceptable |= bit(Status::double_point) | bit(Status::ok) | bit(Status::off_curve);
+  return row;
+}
+
 }  // namespace
+
+std::optional<StressCurve> stress_curve(Family family, CurveKind kind, int degree, int index, std::mt19937_64& rng) {
+  const auto polygon = index % 2 ? ControlPolygon::unit_square : ControlPolygon::perturbed_arc;
+  StressCurve c;
+  switch (family) {
+    case Family::crossings: {
+      if (degree < 3) return std::nullopt;
+      c.t1 = uniform(rng, 0.15, 0.45);
+      c.t2 = uniform(rng, 0.55, 0.85);
+      try {
+        c.curve = with_self_intersection(kind, degree, c.t1, c.t2, rng, polygon);
+      } catch (const std::runtime_error&) {
+        return std::nullopt;  // no curve of this degree crossed itself as asked
+      }
+      return c;
+    }
+    case Family::translated: {
+      const double dx = std::copysign(std::pow(10.0, uniform(rng, 6.0, 12.0)), uniform(rng, -1.0, 1.0));
+      const double dy = std::copysign(std::pow(10.0, uniform(rng, 6.0, 12.0)), uniform(rng, -1.0, 1.0));
+      c.curve = translated(random_curve(kind, degree, rng, polygon), dx, dy);
+      return c;
+    }
+    case Family::elevated:
+      if (degree < 3) return std::nullopt;
+      c.curve = degree_elevated(random_curve(kind, degree - 2, rng, polygon), 2);
+      return c;
+    case Family::improper:
+      if (degree % 2) return std::nullopt;
+      c.curve = improper(random_curve(kind, degree / 2, rng, polygon));
+      return c;
+    case Family::weights: {
+      if (kind == CurveKind::bezier) return std::nullopt;
+      Curve base = random_curve(kind, degree, rng, polygon);
+      auto weight = [&] { return std::pow(10.0, uniform(rng, -4.0, 4.0)); };
+      for (int i = 0; i <= degree; ++i) {
+        // num_i / den_i is the control point (x), so both scale together.
+        const double wx = weight(), wy = kind == CurveKind::rational_bezier ? wx : weight();
+        base.x_num[i] *= wx / base.x_den[i];
+        base.x_den[i] = wx;
+        base.y_num[i] *= wy / base.y_den[i];
+        base.y_den[i] = wy;
+      }
+      c.curve = base;
+      return c;
+    }
+    case Family::papers: {
+      if (index != 0) return std::nullopt;  // one curve: they are fixed
+      if (kind == CurveKind::rational && degree == 4) c.curve = paper_example1_curve();
+      else if (kind == CurveKind::rational_bezier && degree == 15) c.curve = paper_example2_curve();
+      else if (kind == CurveKind::rational_bezier && degree == 3) c.curve = paper_example4_curve();
+      else if (kind == CurveKind::bezier && degree == 3) c.curve = default_cubic_curve();
+      else return std::nullopt;
+      return c;
+    }
+    default:
+      c.curve = random_curve(kind, degree, rng, polygon);
+      return c;
+  }
+}
 
 const char* to_string(Family family) {
   switch (family) {
@@ -61,6 +186,12 @@ const char* to_string(Family family) {
     case Family::extension: return "extension";
     case Family::noisy: return "noisy";
     case Family::far: return "far";
+    case Family::crossings: return "crossings";
+    case Family::translated: return "translated";
+    case Family::elevated: return "elevated";
+    case Family::improper: return "improper";
+    case Family::weights: return "weights";
+    case Family::papers: return "papers";
   }
   return "?";
 }
@@ -76,13 +207,25 @@ double stress_bound(int degree, double x, double y, double diagonal, double scal
   return 2 * (8 + degree) * kEps * size / speed + 2 * kEps;
 }
 
-std::vector<StressRow> stress_rows(Family family, const CurveSampling& sampling, int count,
-                                   double relative_tolerance, std::mt19937_64& rng) {
+std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curve, const CurveSampling& sampling,
+                                   int count, double relative_tolerance, std::mt19937_64& rng) {
   const Curve& curve = sampling.curve();
   const double diagonal = sampling.diagonal(), tolerance = relative_tolerance * diagonal;
+  if (family == Family::crossings) {
+    std::vector<StressRow> rows;
+    for (const KnownPoint& k : around_crossing(sampling, stress_curve.t1, stress_curve.t2, count, rng))
+      rows.push_back(crossing_row(curve, k, diagonal, tolerance));
+    return rows;
+  }
   std::vector<KnownPoint> known;
   switch (family) {
-    case Family::on_curve: known = segment_points(sampling, count, rng); break;
+    case Family::on_curve:
+    case Family::translated:
+    case Family::elevated:
+    case Family::weights:
+    case Family::papers: known = segment_points(sampling, count, rng); break;
+    case Family::improper: known = improper_points(sampling, count, rng); break;
+    case Family::crossings: break;
     case Family::near_ends: known = near_end_points(sampling, count, rng); break;
     case Family::extension: known = extension_points(sampling, count, rng); break;
     case Family::noisy: known = normal_offset_points(sampling, count, 1e-12, 1e-3, rng); break;
@@ -135,7 +278,8 @@ void StressTally::add(const StressRow& row, const PointResult& got, double diago
     ++no_truth;
     return;
   }
-  const double error = std::abs(got.t - row.t_true);
+  double error = std::abs(got.t - row.t_true);
+  if (got.status == Status::double_point && !std::isnan(row.t2_true)) error = std::max(error, std::abs(got.t2 - row.t2_true));
   dt.push_back(error);
   dt_over_bound.push_back(error / row.bound);
   residual_error.push_back(std::abs(got.residual - row.distance) / diagonal);

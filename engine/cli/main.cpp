@@ -316,13 +316,13 @@ int main(int argc, char** argv) {
   profile->add_flag("--json", profile_options.json, "One JSON object on stdout");
 
   bezinv::cli::StressOptions stress_options;
-  std::string stress_families = "on_curve,near_ends,extension,noisy,far",
+  std::string stress_families = "on_curve,near_ends,extension,noisy,far,crossings,translated,elevated,improper,weights,papers",
               stress_kinds = "bezier,rational_bezier,rational", stress_degrees = "1-24", stress_paths = "default";
   long long stress_threads = 0;
   CLI::App* stress = app.add_subcommand(
       "stress", "Invert points of known answers family by family; report each answer's error against a "
                 "high-precision truth, and every wrong status (exit 1 if any)");
-  stress->add_option("--families", stress_families, "Comma-separated: on_curve,near_ends,extension,noisy,far")
+  stress->add_option("--families", stress_families, "Comma-separated families (datasets_gen/include/bezinv/datasets/stress.hpp)")
       ->capture_default_str();
   stress->add_option("--kinds", stress_kinds, "Comma-separated curve kinds")->capture_default_str();
   stress->add_option("--degrees", stress_degrees, "Degree N or range LO-HI")->capture_default_str();

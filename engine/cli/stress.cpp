@@ -136,12 +136,14 @@ int run_stress(const StressOptions& options) {
     CurveRows& c = curves[i];
     std::mt19937_64 rng(options.seed + 1000003ULL * i);
     // Half the curves "reasonable" (a perturbed arc), half wild (loops, close approaches).
-    const auto polygon = i % 2 ? datasets::ControlPolygon::unit_square : datasets::ControlPolygon::perturbed_arc;
-    const Curve curve = datasets::random_curve(c.kind, c.degree, rng, polygon);
-    InversionPlan plan = make_plan(curve);
+    const int index = static_cast<int>(i % static_cast<std::size_t>(options.curves));
+    const std::optional<datasets::StressCurve> curve = datasets::stress_curve(c.family, c.kind, c.degree, index, rng);
+    if (!curve) return;  // the family does not apply here
+    InversionPlan plan = make_plan(curve->curve);
     if (!plan.usable()) return;
-    const datasets::CurveSampling sampling(curve);
-    c.rows = datasets::stress_rows(c.family, sampling, static_cast<int>(per_curve), options.relative_tolerance, rng);
+    const datasets::CurveSampling sampling(curve->curve);
+    c.rows = datasets::stress_rows(c.family, *curve, sampling, static_cast<int>(per_curve), options.relative_tolerance,
+                                   rng);
     c.plan.emplace(std::move(plan));
   });
   const double generation_seconds =
@@ -164,7 +166,7 @@ int run_stress(const StressOptions& options) {
         cell.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         for (std::size_t k = 0; k < points.size(); ++k) cell.tally.add(c.rows[k], results[k], c.plan->diagonal());
       }
-      cells.push_back(std::move(cell));
+      if (cell.tally.rows > 0) cells.push_back(std::move(cell));  // a family that does not apply here
     }
   }
 

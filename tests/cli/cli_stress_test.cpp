@@ -17,7 +17,9 @@ using bezinv::test_support::ScratchDirectory;
 
 TEST(CliStress, EveryCellReportedAndEveryStatusRight) {
   ScratchDirectory scratch{"bezinv-stress-test-"};
-  const auto run = run_bezinv(scratch, "stress --degrees 2-3 --points 1200 --curves 2 --paths default,svd-only --json");
+  const auto run = run_bezinv(scratch,
+                              "stress --families on_curve,near_ends,extension,noisy,far --degrees 2-3 --points 1200 "
+                              "--curves 2 --paths default,svd-only --json");
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out.substr(0, 2000);
   const auto report = nlohmann::json::parse(run.out);
   EXPECT_EQ(report.at("wrong_status").get<int>(), 0);
@@ -37,6 +39,28 @@ TEST(CliStress, EveryCellReportedAndEveryStatusRight) {
   }
   EXPECT_EQ(families, (std::set<std::string>{"on_curve", "near_ends", "extension", "noisy", "far"}));
   EXPECT_EQ(report.at("rows").get<int>(), rows);
+}
+
+// The families made of special curves, where each applies at degrees 3 and 4: crossings, curves
+// far from the origin, degree-elevated, improper (even degrees), extreme weights (rational kinds),
+// the papers' curves (Example 4 and the demo's cubic at degree 3).
+TEST(CliStress, SpecialCurvesFamiliesAllRight) {
+  ScratchDirectory scratch{"bezinv-stress-test-"};
+  const auto run = run_bezinv(scratch,
+                              "stress --families crossings,translated,elevated,improper,weights,papers --degrees 3-4 "
+                              "--points 2400 --curves 2 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out.substr(0, 2000);
+  const auto report = nlohmann::json::parse(run.out);
+  std::set<std::string> families;
+  int double_points = 0;
+  for (const auto& cell : report.at("cells")) {
+    families.insert(cell.at("family").get<std::string>());
+    EXPECT_LE(cell.at("abs_dt_over_bound").at("max").get<double>(), 4.0) << cell.dump();
+    if (cell.at("confusion").contains("double_point"))
+      double_points += cell.at("confusion").at("double_point").value("double_point", 0);
+  }
+  EXPECT_EQ(families, (std::set<std::string>{"crossings", "translated", "elevated", "improper", "weights", "papers"}));
+  EXPECT_GT(double_points, 0) << "the crossings must include points within the tolerance of both branches";
 }
 
 TEST(CliStress, RefusesUnknownFamiliesKindsPathsAndDegrees) {

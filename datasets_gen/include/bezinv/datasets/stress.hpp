@@ -16,8 +16,25 @@
 //              off_curve above twice it, either between (ambiguous); near an end of the segment
 //              whose nearest point is the end, outside_segment is right too.
 //   far        the same with d in 10..1000 diagonals: far off the curve; status off_curve.
+//   crossings  curves made to cross themselves at P(t1) = P(t2) (degree >= 3), points at the
+//              crossing and at 1e-9..1e-4 diagonals from it: both branches within the tolerance
+//              (double_point, t and t2), one (ok), none (off_curve), and between, more than one
+//              status right. Truth: each branch's nearest parameter, high precision.
+//   translated on_curve's points on the curve moved 1e6..1e12 away from the origin (map
+//              coordinates): the digits the plan's centring must keep. Status ok.
+//   elevated   on_curve's points on a curve of degree n - 2 written at degree n (in double, so its
+//              top coefficients are round-off): the engine's degree reduction. Status ok.
+//   improper   on_curve's points on P(t) = Q(t^2) (even degrees): every point has a second
+//              parameter -t on the extension. Status ok.
+//   weights    on_curve's points with weights (denominator coefficients) 10^-4..10^4: ratios up
+//              to 1e8 (rational kinds only). Status ok.
+//   papers     the papers' curves where kind and degree match (Marco & Martinez's Examples 1, 2
+//              and 4, and the demo's cubic), on_curve's points. Status ok.
 // Every generated point is isolated from the curve's other branches (datasets/known_point.hpp).
+// A family that does not apply to a kind or degree (crossings below 3, improper at odd degrees,
+// weights for bezier, papers but for their own) makes no curve there.
 #include <array>
+#include <limits>
 #include <cstddef>
 #include <optional>
 #include <random>
@@ -30,9 +47,10 @@
 
 namespace bezinv::datasets {
 
-enum class Family { on_curve, near_ends, extension, noisy, far };
-inline constexpr std::array kFamilies = {Family::on_curve, Family::near_ends, Family::extension, Family::noisy,
-                                         Family::far};
+enum class Family { on_curve, near_ends, extension, noisy, far, crossings, translated, elevated, improper, weights, papers };
+inline constexpr std::array kFamilies = {Family::on_curve,  Family::near_ends,  Family::extension, Family::noisy,
+                                         Family::far,       Family::crossings,  Family::translated, Family::elevated,
+                                         Family::improper,  Family::weights,    Family::papers};
 const char* to_string(Family family);
 std::optional<Family> family_from_string(std::string_view name);
 
@@ -43,6 +61,7 @@ struct StressRow {
   unsigned acceptable = 0;  // the statuses that are right (bit 1 << status; `expected` among them):
                             // more than one for a row within a margin of the tolerance (ambiguous)
   double t_true = 0;       // the nearest parameter of `point` (high precision, rounded)
+  double t2_true = std::numeric_limits<double>::quiet_NaN();  // a double point's other parameter
   double distance = 0;     // |P(t_true) - point| (high precision, rounded)
   double bound = 0;        // the accuracy model's bound on |t - t_true| (stress_bound)
 };
@@ -54,9 +73,18 @@ struct StressRow {
 // absolute terms, which grows as (|1 - t| + |t|)^n on the extension).
 double stress_bound(int degree, double x, double y, double diagonal, double scale, double speed);
 
+// A curve of the family, or none where the family does not apply. t1, t2: a crossing's parameters.
+struct StressCurve {
+  Curve curve;
+  double t1 = std::numeric_limits<double>::quiet_NaN(), t2 = std::numeric_limits<double>::quiet_NaN();
+};
+// index: the curve's number within its cell (even: a perturbed arc, odd: a wild control polygon).
+std::optional<StressCurve> stress_curve(Family family, CurveKind kind, int degree, int index, std::mt19937_64& rng);
+
 // `count` rows of `family` on the curve (fewer where too few isolated points exist), truths at
-// high precision, statuses for the relative tolerance `relative_tolerance`.
-std::vector<StressRow> stress_rows(Family family, const CurveSampling& sampling, int count,
+// high precision, statuses for the relative tolerance `relative_tolerance`. `sampling` is of
+// curve.curve.
+std::vector<StressRow> stress_rows(Family family, const StressCurve& curve, const CurveSampling& sampling, int count,
                                    double relative_tolerance, std::mt19937_64& rng);
 
 inline constexpr std::size_t kStatusCount = 6;  // Status::ok .. Status::failed
