@@ -341,6 +341,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Validator(check_relative_tolerance, "REL>0"))
       ->capture_default_str();
   stress->add_flag("--json", stress_options.json, "One JSON object on stdout");
+  stress->add_option("--report", stress_options.report_directory,
+                     "Write DIR/index.html (one page, no script), DIR/summary.json and reproducers in DIR/repro");
 
   try {
     app.parse(argc, argv);

@@ -15,6 +15,7 @@
 #include "bezinv/datasets/random_curve.hpp"
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
+#include "stress_report.hpp"
 
 namespace bezinv::cli {
 namespace {
@@ -151,6 +152,8 @@ int run_stress(const StressOptions& options) {
 
   // 2. Every path over every cell's curves.
   std::vector<Cell> cells;
+  StressReport report;
+  const bool reporting = !options.report_directory.empty();
   for (StressPath path : options.paths) {
     const InvertOptions invert_options = options_for(path, options);
     for (std::size_t first = 0; first < curves.size(); first += static_cast<std::size_t>(options.curves)) {
@@ -165,6 +168,9 @@ int run_stress(const StressOptions& options) {
         invert(*c.plan, points, results, invert_options);
         cell.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         for (std::size_t k = 0; k < points.size(); ++k) cell.tally.add(c.rows[k], results[k], c.plan->diagonal());
+        if (reporting)
+          for (std::size_t k = 0; k < points.size(); ++k)
+            report.add({c.family, c.kind, c.degree, to_string(path), &c.plan->curve()}, c.rows[k], results[k]);
       }
       if (cell.tally.rows > 0) cells.push_back(std::move(cell));  // a family that does not apply here
     }
@@ -178,7 +184,7 @@ int run_stress(const StressOptions& options) {
     nan_t += cell.tally.nan_t;
     missing_t2 += cell.tally.missing_t2;
   }
-  if (options.json) {
+  {
     nlohmann::json out;
     out["command"] = "stress";
     out["seed"] = options.seed;
@@ -213,8 +219,10 @@ int run_stress(const StressOptions& options) {
                               {"residual_error_over_diagonal", quantiles_json(t.residual_error)},
                               {"points_per_second", cell.seconds > 0 ? t.rows / cell.seconds : 0.0}});
     }
-    std::printf("%s\n", out.dump(2).c_str());
-  } else {
+    if (options.json) std::printf("%s\n", out.dump(2).c_str());
+    if (reporting) report.write(options.report_directory, out);
+  }
+  if (!options.json) {
     std::printf("bezinv stress: %zu rows, seed %llu, tolerance %.3g x diagonal (truths at %d bits, made in %.1f s)\n\n",
                 rows, options.seed, options.relative_tolerance, datasets::kReferenceBits, generation_seconds);
     std::printf("%-10s %-15s %3s %-9s %7s %5s %5s | %-31s | %-19s | %9s %9s\n", "family", "kind", "deg", "path", "rows",

@@ -23,6 +23,7 @@ struct StressOptions {
   std::vector<StressPath> paths{StressPath::default_path};
   double relative_tolerance = kDefaultRelativeTolerance;
   bool json = false;
+  std::string report_directory;  // --report DIR: the page, summary.json, reproducers (stress_report.hpp)
 };
 
 // Parses "a,b,c" lists and "lo-hi" degree ranges for the command line; throws std::invalid_argument

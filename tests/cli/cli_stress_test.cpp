@@ -3,6 +3,9 @@
 // (exit 0), and bad arguments are refused naming the item.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -61,6 +64,63 @@ TEST(CliStress, SpecialCurvesFamiliesAllRight) {
   }
   EXPECT_EQ(families, (std::set<std::string>{"crossings", "translated", "elevated", "improper", "weights", "papers"}));
   EXPECT_GT(double_points, 0) << "the crossings must include points within the tolerance of both branches";
+}
+
+// --report DIR: summary.json is the --json object; index.html is well-formed (an XML parser reads
+// it: XHTML), has a histogram and a scatter plot with marks per family; every reproducer runs
+// through `bezinv invert` as it is and gives what truth.json says the stress run got; a file
+// already in DIR is left alone.
+TEST(CliStress, ReportPageSummaryAndReproducers) {
+  ScratchDirectory scratch{"bezinv-stress-test-"};
+  const std::string dir = scratch.path("report");
+  std::filesystem::create_directories(dir);
+  scratch.write("report/mine.txt", "keep me");
+  const auto run = run_bezinv(scratch, "stress --families on_curve,noisy,crossings --degrees 3-4 --points 600 --curves 2 "
+                                       "--report " + bezinv::test_support::quoted(dir));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(bezinv::test_support::read_file(dir + "/mine.txt"), "keep me");
+  const auto summary = nlohmann::json::parse(bezinv::test_support::read_file(dir + "/summary.json"));
+  EXPECT_EQ(summary.at("wrong_status").get<int>(), 0);
+  EXPECT_GT(summary.at("rows").get<int>(), 100);
+
+  // Well-formed, and the plots have marks: Debian's Python reads the page as XML.
+  const std::string check = scratch.write("check.py", R"(
+import sys, xml.etree.ElementTree as E
+svg = '{http://www.w3.org/2000/svg}'
+root = E.parse(sys.argv[1]).getroot()
+plots = root.findall('.//' + svg + 'svg')
+marks = [len([e for e in p.iter() if e.get('class') == 'mark']) for p in plots]
+print(len(plots), min(marks))
+)");
+  const std::string out = scratch.path("python.txt");
+  ASSERT_EQ(std::system(("/usr/bin/python3 " + bezinv::test_support::quoted(check) + " " + bezinv::test_support::quoted(dir + "/index.html") +
+                         " > " + bezinv::test_support::quoted(out) + " 2>&1").c_str()),
+            0)
+      << bezinv::test_support::read_file(out);
+  int plots = 0, least_marks = 0;
+  ASSERT_EQ(std::sscanf(bezinv::test_support::read_file(out).c_str(), "%d %d", &plots, &least_marks), 2);
+  EXPECT_EQ(plots, 6);  // a histogram and a scatter plot per family
+  EXPECT_GT(least_marks, 0);
+
+  // The reproducers: each family's worst rows.
+  int reproduced = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir + "/repro")) {
+    const std::string r = entry.path().string();
+    const auto truth = nlohmann::json::parse(bezinv::test_support::read_file(r + "/truth.json"));
+    const auto again = run_bezinv(scratch, "invert --curves " + bezinv::test_support::quoted(r + "/curves.json") +
+                                               " --points " + bezinv::test_support::quoted(r + "/points.csv") +
+                                               " --out " + bezinv::test_support::quoted(r + "/out.csv"));
+    ASSERT_EQ(again.exit_code, 0) << r << ": " << again.err;
+    const std::string rows = bezinv::test_support::read_file(r + "/out.csv");
+    const std::string row = rows.substr(rows.find('\n') + 1);
+    char status[32] = {};
+    double t = 0;
+    ASSERT_EQ(std::sscanf(row.c_str(), "%lf,%31[^,]", &t, status), 2) << rows;
+    EXPECT_EQ(std::string(status), truth.at("got_status").get<std::string>()) << r;
+    EXPECT_EQ(t, truth.at("got_t").get<double>()) << r;
+    ++reproduced;
+  }
+  EXPECT_GE(reproduced, 3);
 }
 
 TEST(CliStress, RefusesUnknownFamiliesKindsPathsAndDegrees) {
