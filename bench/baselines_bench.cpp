@@ -34,22 +34,11 @@
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
 #include "bezinv/null_vector.hpp"
+#include "baselines.hpp"
 #include "paper_way.hpp"
 
 #include <Eigen/Eigenvalues>
 
-#ifdef BEZINV_HAVE_OCCT
-#include <Geom2dAPI_ProjectPointOnCurve.hxx>
-#include <Geom2d_BezierCurve.hxx>
-#include <TColStd_Array1OfReal.hxx>
-#include <TColgp_Array1OfPnt2d.hxx>
-#include <gp_Pnt2d.hxx>
-#endif
-
-#ifdef BEZINV_HAVE_SISL
-#include <sisl.h>
-#include <sys/resource.h>
-#endif
 
 namespace {
 
@@ -62,8 +51,6 @@ constexpr int kPointsPerCurve = 1024;
 // on these curves (bezinv's refined t is within ~1e-15), far below what a wrong extremum gives.
 constexpr double kAgreement = 1e-7;
 
-// SISL's geometric resolution for s1953: far below kAgreement (the curves are of unit size).
-constexpr double kSislGeometricResolution = 1e-9;
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 
@@ -324,51 +311,35 @@ void BM_Eigen_SelfAdjoint_per_point(benchmark::State& state) {
   });
 }
 
+// The workload's curves as the library holds them (engine/cli/baselines.hpp).
+using Projectors = std::vector<std::unique_ptr<baselines::Projector>>;
+const Projectors& projectors(baselines::Library library, int degree) {
+  static std::map<std::pair<baselines::Library, int>, Projectors> cache;
+  auto [it, inserted] = cache.try_emplace({library, degree});
+  if (inserted)
+    for (const Curve& curve : workload(degree).curves) it->second.push_back(baselines::projector(library, curve));
+  return it->second;
+}
+
 // ---- OpenCASCADE -----------------------------------------------------------------------------------
 
 #ifdef BEZINV_HAVE_OCCT
 
-// Poles a_i = num_i / w_i (Curve stores rational_bezier as w_i a_i over w_i) and weights w_i.
-Handle(Geom2d_Curve) occt_curve(const Curve& curve) {
-  const int n = curve.degree();
-  TColgp_Array1OfPnt2d poles(1, n + 1);
-  TColStd_Array1OfReal weights(1, n + 1);
-  for (int i = 0; i <= n; ++i) {
-    poles.SetValue(i + 1, gp_Pnt2d(curve.x_num[i] / curve.x_den[i], curve.y_num[i] / curve.y_den[i]));
-    weights.SetValue(i + 1, curve.x_den[i]);
-  }
-  return new Geom2d_BezierCurve(poles, weights);
-}
-
-// What a user writes per point. LowerDistanceParameter throws when there is no extremum.
-double occt_parameter(const Handle(Geom2d_Curve)& curve, Point point) {
-  const Geom2dAPI_ProjectPointOnCurve projection(gp_Pnt2d(point.x, point.y), curve);
-  return projection.NbPoints() > 0 ? projection.LowerDistanceParameter() : kNan;
-}
-
-const std::vector<Handle(Geom2d_Curve)>& occt_curves(int degree) {
-  static std::map<int, std::vector<Handle(Geom2d_Curve)>> cache;
-  auto [it, inserted] = cache.try_emplace(degree);
-  if (inserted)
-    for (const Curve& curve : workload(degree).curves) it->second.push_back(occt_curve(curve));
-  return it->second;
-}
-
 void run_occt(benchmark::State& state, int noise_exponent) {
   const int n = static_cast<int>(state.range(0));
   const Workload& w = workload(n, noise_exponent);
-  const std::vector<Handle(Geom2d_Curve)>& curves = occt_curves(n);
+  const Projectors& curves = projectors(baselines::Library::occt, n);
   std::vector<double> t(kPointsPerCurve);
   int c = 0;
   for (auto _ : state) {
-    for (int k = 0; k < kPointsPerCurve; ++k) t[k] = occt_parameter(curves[c], w.points[c][k]);
+    for (int k = 0; k < kPointsPerCurve; ++k) t[k] = curves[c]->parameter(w.points[c][k]);
     benchmark::DoNotOptimize(t.data());
     benchmark::ClobberMemory();
     c = (c + 1) % kCurves;
   }
   state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
   report_agreement(state, "occt", noise_exponent, [&] {
-    return measure_agreement(w, [&](int curve, int k) { return occt_parameter(curves[curve], w.points[curve][k]); });
+    return measure_agreement(w, [&](int curve, int k) { return curves[curve]->parameter(w.points[curve][k]); });
   });
 }
 
@@ -381,68 +352,8 @@ void BM_OCCT_ProjectPointOnCurve_noisy(benchmark::State& state) { run_occt(state
 
 #ifdef BEZINV_HAVE_SISL
 
-struct SislCurveDeleter {
-  void operator()(SISLCurve* curve) const { freeCurve(curve); }
-};
-using SislCurve = std::unique_ptr<SISLCurve, SislCurveDeleter>;
-
-// A Bezier curve of degree n is the B-spline of order n+1 on the knots (0^{n+1}, 1^{n+1}); kind 2
-// (rational B-spline) takes the coefficients in homogeneous form (w a_x, w a_y, w), which is how
-// Curve stores a rational_bezier (x_num, y_num, x_den). newCurve copies the arrays (icopy = 1).
-SislCurve sisl_curve(const Curve& curve) {
-  const int n = curve.degree();
-  std::vector<double> knots(2 * (n + 1), 0.0);
-  std::fill(knots.begin() + n + 1, knots.end(), 1.0);
-  std::vector<double> coefficients;
-  for (int i = 0; i <= n; ++i) coefficients.insert(coefficients.end(), {curve.x_num[i], curve.y_num[i], curve.x_den[i]});
-  return SislCurve(newCurve(n + 1, n + 1, knots.data(), coefficients.data(), 2, 2, 1));
-}
-
-// s1953 returns every parameter where the distance is locally closest (and curve pieces, for a
-// curve that runs along a circle around the point): the nearest of them, measured with s1221.
-double sisl_parameter(SISLCurve* curve, Point point) {
-  double p[2] = {point.x, point.y};
-  int count = 0, pieces = 0, status = 0;
-  double* parameters = nullptr;
-  SISLIntcurve** intersection_curves = nullptr;
-  s1953(curve, p, 2, 0.0, kSislGeometricResolution, &count, &parameters, &pieces, &intersection_curves, &status);
-  double best = kNan;
-  if (status >= 0 && count == 1) {
-    best = parameters[0];
-  } else if (status >= 0) {
-    double best_distance = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < count; ++i) {
-      double value[2];
-      int left = 0, evaluation_status = 0;
-      s1221(curve, 0, parameters[i], &left, value, &evaluation_status);
-      const double distance = std::hypot(value[0] - point.x, value[1] - point.y);
-      if (evaluation_status >= 0 && distance < best_distance) best_distance = distance, best = parameters[i];
-    }
-  }
-  std::free(parameters);
-  if (intersection_curves != nullptr) freeIntcrvlist(intersection_curves, pieces);
-  return best;
-}
-
-const std::vector<SislCurve>& sisl_curves(int degree) {
-  static std::map<int, std::vector<SislCurve>> cache;
-  auto [it, inserted] = cache.try_emplace(degree);
-  if (inserted)
-    for (const Curve& curve : workload(degree).curves) it->second.push_back(sisl_curve(curve));
-  return it->second;
-}
-
-// s1953 subdivides recursively (s1162 calls itself); on some points of the degree-20 curves it
-// goes ~17,000 frames deep, past the default 8 MiB stack (a segfault, not an error status). With
-// more stack it returns. scripts/bench.sh runs this binary under `ulimit -s unlimited`.
-bool stack_is_large() {
-  rlimit limit{};
-  return getrlimit(RLIMIT_STACK, &limit) == 0 &&
-         (limit.rlim_cur == RLIM_INFINITY || limit.rlim_cur >= (rlim_t{1} << 32));
-}
-
 void run_sisl(benchmark::State& state, int noise_exponent) {
-  if (!stack_is_large()) {
+  if (!baselines::stack_is_large()) {
     state.SkipWithError("SISL's s1953 can overflow an 8 MiB stack: run under `ulimit -s unlimited`");
     for (auto _ : state) {
     }
@@ -450,18 +361,18 @@ void run_sisl(benchmark::State& state, int noise_exponent) {
   }
   const int n = static_cast<int>(state.range(0));
   const Workload& w = workload(n, noise_exponent);
-  const std::vector<SislCurve>& curves = sisl_curves(n);
+  const Projectors& curves = projectors(baselines::Library::sisl, n);
   std::vector<double> t(kPointsPerCurve);
   int c = 0;
   for (auto _ : state) {
-    for (int k = 0; k < kPointsPerCurve; ++k) t[k] = sisl_parameter(curves[c].get(), w.points[c][k]);
+    for (int k = 0; k < kPointsPerCurve; ++k) t[k] = curves[c]->parameter(w.points[c][k]);
     benchmark::DoNotOptimize(t.data());
     benchmark::ClobberMemory();
     c = (c + 1) % kCurves;
   }
   state.SetItemsProcessed(state.iterations() * kPointsPerCurve);
   report_agreement(state, "sisl", noise_exponent, [&] {
-    return measure_agreement(w, [&](int curve, int k) { return sisl_parameter(curves[curve].get(), w.points[curve][k]); });
+    return measure_agreement(w, [&](int curve, int k) { return curves[curve]->parameter(w.points[curve][k]); });
   });
 }
 

@@ -282,7 +282,7 @@ void StressTally::add(const StressRow& row, const PointResult& got, double diago
   if (got.status == Status::double_point && !std::isnan(row.t2_true)) error = std::max(error, std::abs(got.t2 - row.t2_true));
   dt.push_back(error);
   dt_over_bound.push_back(error / row.bound);
-  residual_error.push_back(std::abs(got.residual - row.distance) / diagonal);
+  if (std::isfinite(got.residual)) residual_error.push_back(std::abs(got.residual - row.distance) / diagonal);
 }
 
 Quantiles quantiles(std::vector<double> values) {

@@ -341,6 +341,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Validator(check_relative_tolerance, "REL>0"))
       ->capture_default_str();
   stress->add_flag("--json", stress_options.json, "One JSON object on stdout");
+  std::string stress_baselines;
+  stress->add_option("--baseline", stress_baselines,
+                     "Comma-separated: occt,sisl, the same rows through OpenCASCADE and SISL (a build with them)");
   stress->add_option("--report", stress_options.report_directory,
                      "Write DIR/index.html (one page, no script), DIR/summary.json and reproducers in DIR/repro");
 
@@ -358,6 +361,7 @@ int main(int argc, char** argv) {
       stress_options.kinds = bezinv::cli::parse_kinds(stress_kinds);
       stress_options.paths = bezinv::cli::parse_paths(stress_paths);
       std::tie(stress_options.min_degree, stress_options.max_degree) = bezinv::cli::parse_degrees(stress_degrees);
+      stress_options.baselines = bezinv::cli::parse_baselines(stress_baselines);
       return bezinv::cli::run_stress(stress_options);
     }
     if (invert->parsed()) {

@@ -15,6 +15,7 @@
 #include "bezinv/datasets/random_curve.hpp"
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
+#include "baselines.hpp"
 #include "stress_report.hpp"
 
 namespace bezinv::cli {
@@ -46,7 +47,8 @@ struct Cell {
   Family family;
   CurveKind kind;
   int degree;
-  StressPath path;
+  std::string path;       // the engine's path, or the baseline library
+  bool baseline = false;  // a library's nearest point, not bezinv: no status of its own
   StressTally tally;
   double seconds = 0;
 };
@@ -123,6 +125,24 @@ std::pair<int, int> parse_degrees(const std::string& range) {
   return {lo, hi};
 }
 
+std::vector<baselines::Library> parse_baselines(const std::string& list) {
+  std::vector<baselines::Library> libraries;
+  for (const std::string& item : split(list)) {
+    baselines::Library library;
+    if (item == "occt") library = baselines::Library::occt;
+    else if (item == "sisl") library = baselines::Library::sisl;
+    else throw std::invalid_argument("--baseline: unknown library '" + item + "' (occt, sisl)");
+    if (!baselines::available(library))
+      throw std::invalid_argument("--baseline " + item + ": this bezinv was built without it (scripts/bench.sh "
+                                  "installs OpenCASCADE and SISL and builds bezinv with them)");
+    if (library == baselines::Library::sisl && !baselines::stack_is_large())
+      throw std::invalid_argument("--baseline sisl: SISL's s1953 can overflow an 8 MiB stack; run under "
+                                  "`ulimit -s unlimited`");
+    libraries.push_back(library);
+  }
+  return libraries;
+}
+
 int run_stress(const StressOptions& options) {
   // 1. The curves and their rows, truths included, in parallel (the high-precision truth is the
   //    expensive part).
@@ -157,7 +177,7 @@ int run_stress(const StressOptions& options) {
   for (StressPath path : options.paths) {
     const InvertOptions invert_options = options_for(path, options);
     for (std::size_t first = 0; first < curves.size(); first += static_cast<std::size_t>(options.curves)) {
-      Cell cell{curves[first].family, curves[first].kind, curves[first].degree, path, {}, 0.0};
+      Cell cell{curves[first].family, curves[first].kind, curves[first].degree, to_string(path), false, {}, 0.0};
       for (std::size_t i = first; i < first + static_cast<std::size_t>(options.curves); ++i) {
         const CurveRows& c = curves[i];
         if (!c.plan || c.rows.empty()) continue;
@@ -175,10 +195,46 @@ int run_stress(const StressOptions& options) {
       if (cell.tally.rows > 0) cells.push_back(std::move(cell));  // a family that does not apply here
     }
   }
+  // The baselines: each library's nearest point of the segment for the rows whose truth is one
+  // (not the extension's, which they do not look for), one point at a time as their users call
+  // them. They give no status: a row counts as answered with its expected one, and its t is
+  // compared (for a double point, with the nearer of the two parameters).
+  for (baselines::Library library : options.baselines) {
+    for (std::size_t first = 0; first < curves.size(); first += static_cast<std::size_t>(options.curves)) {
+      Cell cell{curves[first].family, curves[first].kind, curves[first].degree, baselines::to_string(library), true, {},
+                0.0};
+      for (std::size_t i = first; i < first + static_cast<std::size_t>(options.curves); ++i) {
+        const CurveRows& c = curves[i];
+        if (!c.plan || c.rows.empty()) continue;
+        const auto projector = baselines::projector(library, c.plan->curve());
+        if (!projector) continue;  // separate denominators: not a curve the library takes
+        for (const StressRow& row : c.rows) {
+          if (row.expected == Status::outside_segment) continue;
+          const auto start = std::chrono::steady_clock::now();
+          PointResult got;
+          got.status = row.expected;
+          got.t = projector->parameter(row.point);
+          cell.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          got.residual = PointResult::nan;  // the library's distance is not asked for
+          StressRow compared = row;
+          compared.acceptable = 1u << static_cast<unsigned>(row.expected);
+          if (row.expected == Status::double_point) {  // either branch's parameter is right
+            compared.expected = Status::ok;
+            got.status = Status::ok;
+            if (std::abs(got.t - row.t2_true) < std::abs(got.t - row.t_true)) compared.t_true = row.t2_true;
+            compared.acceptable = 1u << static_cast<unsigned>(Status::ok);
+          }
+          cell.tally.add(compared, got, c.plan->diagonal());
+        }
+      }
+      if (cell.tally.rows > 0) cells.push_back(std::move(cell));
+    }
+  }
 
   // 3. The report.
   std::size_t rows = 0, wrong = 0, nan_t = 0, missing_t2 = 0;
   for (const Cell& cell : cells) {
+    if (cell.baseline) continue;
     rows += cell.tally.rows;
     wrong += cell.tally.wrong_status;
     nan_t += cell.tally.nan_t;
@@ -206,7 +262,8 @@ int run_stress(const StressOptions& options) {
       out["cells"].push_back({{"family", to_string(cell.family)},
                               {"kind", bezinv::to_string(cell.kind)},
                               {"degree", cell.degree},
-                              {"path", to_string(cell.path)},
+                              {"path", cell.path},
+                              {"baseline", cell.baseline},
                               {"rows", t.rows},
                               {"wrong_status", t.wrong_status},
                               {"ambiguous", t.ambiguous},
@@ -232,7 +289,7 @@ int run_stress(const StressOptions& options) {
       const datasets::Quantiles dt = datasets::quantiles(t.dt), ratio = datasets::quantiles(t.dt_over_bound),
                                 residual = datasets::quantiles(t.residual_error);
       std::printf("%-10s %-15s %3d %-9s %7zu %5zu %5zu | %7.1e %7.1e %7.1e %7.1e | %9.2g %9.2g | %9.1e %9.3g\n",
-                  to_string(cell.family), bezinv::to_string(cell.kind), cell.degree, to_string(cell.path), t.rows,
+                  to_string(cell.family), bezinv::to_string(cell.kind), cell.degree, cell.path.c_str(), t.rows,
                   t.wrong_status, t.ambiguous, dt.p50, dt.p99, dt.p999, dt.max, ratio.p999, ratio.max, residual.p999,
                   cell.seconds > 0 ? t.rows / cell.seconds : 0.0);
     }
@@ -244,7 +301,7 @@ int run_stress(const StressOptions& options) {
         for (std::size_t g = 0; g < datasets::kStatusCount; ++g)
           if (cell.tally.wrong[e][g])
             std::printf("  %s %s degree %d %s: expected %s, got %s: %zu\n", to_string(cell.family),
-                        bezinv::to_string(cell.kind), cell.degree, to_string(cell.path),
+                        bezinv::to_string(cell.kind), cell.degree, cell.path.c_str(),
                         bezinv::to_string(static_cast<Status>(e)), bezinv::to_string(static_cast<Status>(g)),
                         cell.tally.wrong[e][g]);
     std::printf("%zu of %zu rows with a wrong status, %zu without t, %zu double points without t2\n", wrong, rows,

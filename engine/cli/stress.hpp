@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "bezinv/curve.hpp"
+#include "baselines.hpp"
 #include "bezinv/datasets/stress.hpp"
 
 namespace bezinv::cli {
@@ -23,6 +24,7 @@ struct StressOptions {
   std::vector<StressPath> paths{StressPath::default_path};
   double relative_tolerance = kDefaultRelativeTolerance;
   bool json = false;
+  std::vector<baselines::Library> baselines;  // --baseline occt,sisl (when this build has them)
   std::string report_directory;  // --report DIR: the page, summary.json, reproducers (stress_report.hpp)
 };
 
@@ -32,6 +34,9 @@ std::vector<datasets::Family> parse_families(const std::string& list);
 std::vector<CurveKind> parse_kinds(const std::string& list);
 std::vector<StressPath> parse_paths(const std::string& list);
 std::pair<int, int> parse_degrees(const std::string& range);
+// "occt,sisl": each must be in this build (and SISL needs a large stack); throws
+// std::invalid_argument saying what to do otherwise.
+std::vector<baselines::Library> parse_baselines(const std::string& list);
 
 // Prints the table (or one JSON object). Returns 0 when every status was right and every t there,
 // 1 otherwise.

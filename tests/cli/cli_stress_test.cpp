@@ -127,7 +127,8 @@ TEST(CliStress, RefusesUnknownFamiliesKindsPathsAndDegrees) {
   ScratchDirectory scratch{"bezinv-stress-test-"};
   for (const auto& [arguments, named] :
        {std::pair{"--families on_curve,wobbly", "wobbly"}, std::pair{"--kinds nurbs", "nurbs"},
-        std::pair{"--paths fast", "fast"}, std::pair{"--degrees 0-3", "0-3"}, std::pair{"--degrees 5-40", "5-40"}}) {
+        std::pair{"--paths fast", "fast"}, std::pair{"--degrees 0-3", "0-3"}, std::pair{"--degrees 5-40", "5-40"},
+        std::pair{"--baseline acis", "acis"}}) {
     const auto run = run_bezinv(scratch, std::string("stress --points 10 ") + arguments);
     EXPECT_EQ(run.exit_code, 2) << arguments;
     EXPECT_NE(run.err.find(named), std::string::npos) << arguments << ": " << run.err;
