@@ -118,6 +118,28 @@ StressRow crossing_row(const Curve& curve, const KnownPoint& k, double diagonal,
   return row;
 }
 
+// The engine's tolerance (docs/accuracy-model.md): REL x diagonal, but at least 4 ulps of the
+// control points' largest coordinate (a curve 1e12 from the origin has ulps of 1.2e-4).
+double effective_tolerance(const Curve& curve, double diagonal, double relative_tolerance) {
+  double magnitude = 0;
+  for (std::size_t i = 0; i < curve.x_num.size(); ++i) {
+    if (curve.x_den[i] != 0) magnitude = std::max(magnitude, std::abs(curve.x_num[i] / curve.x_den[i]));
+    if (curve.y_den[i] != 0) magnitude = std::max(magnitude, std::abs(curve.y_num[i] / curve.y_den[i]));
+  }
+  const double ulp = std::nextafter(magnitude, std::numeric_limits<double>::infinity()) - magnitude;
+  return std::max(relative_tolerance * diagonal, 4 * ulp);
+}
+
+// Where the tolerance is that large (far from the origin) the generators' isolation margin
+// (kIsolation x diagonal) no longer keeps other branches out of it: a branch of the segment other
+// than the point's own within twice the tolerance makes double_point right too.
+void allow_other_branches(const CurveSampling& sampling, double tolerance, StressRow& row) {
+  if (tolerance < kIsolation * sampling.diagonal() / 4 || std::isnan(row.t_true)) return;
+  for (const DistanceMinimum& m : sampling.line_minima({row.point.x, row.point.y}, 2 * tolerance))
+    if (m.on_segment && m.distance <= 2 * tolerance && std::abs(static_cast<double>(m.t) - row.t_true) > 1e-6)
+      row.acceptable |= bit(Status::double_point);
+}
+
 }  // namespace
 
 std::optional<StressCurve> stress_curve(Family family, CurveKind kind, int degree, int index, std::mt19937_64& rng) {
@@ -210,7 +232,7 @@ double stress_bound(int degree, double x, double y, double diagonal, double scal
 std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curve, const CurveSampling& sampling,
                                    int count, double relative_tolerance, std::mt19937_64& rng) {
   const Curve& curve = sampling.curve();
-  const double diagonal = sampling.diagonal(), tolerance = relative_tolerance * diagonal;
+  const double diagonal = sampling.diagonal(), tolerance = effective_tolerance(curve, diagonal, relative_tolerance);
   if (family == Family::crossings) {
     std::vector<StressRow> rows;
     for (const KnownPoint& k : around_crossing(sampling, stress_curve.t1, stress_curve.t2, count, rng))
@@ -250,6 +272,7 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
     // the curve's extension beyond that end is about as near.
     if (off && (row.t_true == 0.0 || row.t_true == 1.0) && row.distance < kAmbiguousAbove * tolerance)
       row.acceptable |= bit(Status::outside_segment) | bit(Status::ok);
+    allow_other_branches(sampling, tolerance, row);
     rows.push_back(row);
   }
   return rows;
