@@ -14,7 +14,10 @@
 #include "bezinv/datasets/high_precision_nearest.hpp"
 #include "bezinv/datasets/off_curve_points.hpp"
 #include "bezinv/datasets/random_curve.hpp"
+#include "bezinv/datasets/reference_evaluation.hpp"
+#include "bezinv/datasets/self_intersection.hpp"
 #include "bezinv/datasets/stress.hpp"
+#include "bezinv/datasets/translation.hpp"
 
 namespace bezinv::datasets {
 namespace {
@@ -178,6 +181,43 @@ TEST(StressQuantiles, NearestRankOfKnownValues) {
   EXPECT_EQ(q.p999, 999.0);
   EXPECT_EQ(q.max, 1000.0);
   EXPECT_TRUE(std::isnan(quantiles({}).max));
+}
+
+}  // namespace
+}  // namespace bezinv::datasets
+
+namespace bezinv::datasets {
+namespace {
+
+// Far from the origin the engine's tolerance has a floor of 4 ulps of the coordinates (4.9e-4 at
+// 1e12, against the generators' isolation margin of 1e-4 diagonals): a point of one branch near a
+// crossing may then be within the tolerance of the other branch too, and double_point is a right
+// answer for it. The rows must say so, as measured here on a fine grid of the other branch.
+TEST(StressRows, FarFromTheOriginAnotherBranchWithinTheToleranceMakesDoublePointRight) {
+  std::mt19937_64 rng(23);
+  const Curve crossing = with_self_intersection(CurveKind::bezier, 4, 0.3, 0.7, rng, ControlPolygon::perturbed_arc);
+  StressCurve curve{translated(crossing, 1e12, 1e12), 0.3, 0.7};
+  const CurveSampling sampling(curve.curve);
+  const std::vector<StressRow> rows = stress_rows(Family::translated, curve, sampling, 1200, 1e-6, rng);
+  const double ulp = std::nextafter(1e12, 2e12) - 1e12, tolerance = 4 * ulp;
+  ASSERT_GT(tolerance, 1e-4 * sampling.diagonal());
+  int near_other = 0;
+  for (const StressRow& row : rows) {
+    // The branches come near each other only around the crossing (a perturbed arc, one loop).
+    const bool own_first = row.t_true < 0.5;  // branch 1 near t = 0.3, branch 2 near t = 0.7
+    if (std::abs(row.t_true - (own_first ? 0.3 : 0.7)) > 0.02) continue;
+    const double centre = own_first ? 0.7 : 0.3;
+    Real nearest = std::numeric_limits<Real>::infinity();
+    for (int k = -1000; k <= 1000; ++k) {
+      const RealPoint p = reference_point(curve.curve, static_cast<Real>(centre + 0.03 * k / 1000.0));
+      nearest = std::min(nearest, std::hypot(p.x - row.point.x, p.y - row.point.y));
+    }
+    if (nearest > 1.9 * tolerance) continue;  // (the grid's spacing is ~1e-5 of the diagonal)
+    ++near_other;
+    EXPECT_TRUE(row.acceptable & (1u << static_cast<unsigned>(Status::double_point)))
+        << "t " << row.t_true << ": the other branch at " << static_cast<double>(nearest) << ", tolerance " << tolerance;
+  }
+  EXPECT_GT(near_other, 0) << "the test needs rows near the other branch";
 }
 
 }  // namespace
