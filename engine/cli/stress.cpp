@@ -252,6 +252,7 @@ int run_stress(const StressOptions& options) {
           PointResult got;
           got.status = row.expected;
           got.t = projector->parameter(row.point);
+          if (reporting) report.add_baseline(c.family, baselines::to_string(library), row, got.t);
           cell.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
           got.residual = PointResult::nan;  // the library's distance is not asked for
           StressRow compared = row;

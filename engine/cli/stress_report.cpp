@@ -158,6 +158,28 @@ void StressReport::add(const Origin& origin, const StressRow& row, const PointRe
   }
 }
 
+void StressReport::add_baseline(datasets::Family family, const std::string& library, const StressRow& row,
+                                double t) {
+  BaselineData& b = baselines_[family][library];
+  if (std::isnan(t)) {
+    ++b.no_answer;
+    return;
+  }
+  if (std::isnan(row.t_true)) return;
+  double error = std::abs(t - row.t_true);
+  if (row.expected == Status::double_point && std::isfinite(row.t2_true)) error = std::min(error, std::abs(t - row.t2_true));
+  const double ratio = error / row.bound;
+  ++b.compared;
+  b.worst = std::max(b.worst, ratio);
+  if (ratio == 0) {
+    ++b.exact;
+  } else {
+    const int bin = static_cast<int>(std::floor((std::log10(ratio) - kFirstBin) / kBinWidth));
+    ++b.histogram[std::clamp(bin, 0, kBins - 1)];
+  }
+  if (b.scatter.size() < kScatter) b.scatter.push_back({row.t_true, error});
+}
+
 void StressReport::write(const std::filesystem::path& directory, const nlohmann::json& summary) const {
   std::error_code error;
   std::filesystem::create_directories(directory / "repro", error);
@@ -222,8 +244,14 @@ void StressReport::write(const std::filesystem::path& directory, const nlohmann:
   html << "</table>\n";
 
   for (const auto& [family, f] : families_) {
-    html << "<h2 id=\"" << datasets::to_string(family) << "\">" << datasets::to_string(family) << "</h2>\n<div>\n"
+    html << "<h2 id=\"" << datasets::to_string(family) << "\">" << datasets::to_string(family) << "</h2>\n<p>bezinv</p>\n<div>\n"
          << histogram_svg(f.histogram, f.exact) << scatter_svg(f.scatter) << "</div>\n";
+    if (const auto it = baselines_.find(family); it != baselines_.end())
+      for (const auto& [library, b] : it->second)
+        html << "<p>" << library << " on the same rows (those whose truth is a point of the segment, kinds with one "
+             << "denominator): " << b.compared << " compared, worst error / bound " << number(b.worst) << ", "
+             << b.no_answer << " without an answer</p>\n<div>\n"
+             << histogram_svg(b.histogram, b.exact) << scatter_svg(b.scatter) << "</div>\n";
     html << "<table>\n<tr><th>expected \\ got</th>";
     for (std::size_t g = 0; g < datasets::kStatusCount; ++g) html << "<th>" << bezinv::to_string(static_cast<Status>(g)) << "</th>";
     html << "</tr>\n";

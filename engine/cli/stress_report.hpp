@@ -31,6 +31,9 @@ class StressReport {
 
   // Every row of the run, in any order.
   void add(const Origin& origin, const datasets::StressRow& row, const PointResult& got);
+  // A baseline library's parameter for a row whose truth is a point of the segment (NaN: it gave
+  // none), shown beside bezinv's in the family's section. For a double point either parameter is right.
+  void add_baseline(datasets::Family family, const std::string& library, const datasets::StressRow& row, double t);
   // Writes the page, the summary and the reproducers into `directory` (created if needed; files of
   // these names are replaced, nothing else in it is touched). Throws std::runtime_error naming the
   // file that could not be written.
@@ -58,6 +61,13 @@ class StressReport {
   };
   static constexpr std::size_t kScatter = 3000, kWorst = 8, kWrongKept = 40;
   std::map<datasets::Family, FamilyData> families_;
+  struct BaselineData {
+    std::array<std::size_t, kBins> histogram{};
+    std::size_t exact = 0, compared = 0, no_answer = 0;
+    double worst = 0;
+    std::vector<std::array<double, 2>> scatter;
+  };
+  std::map<datasets::Family, std::map<std::string, BaselineData>> baselines_;
   std::vector<Kept> wrong_;
   std::mt19937_64 sample_rng_{12345};
 };
