@@ -44,11 +44,17 @@ Jet bernstein_jet(const std::vector<double>& coefficients, const Big& t) {
   b.reserve(coefficients.size());
   for (double c : coefficients) b.emplace_back(c);
   const Big one(1.0), s = one - t;
+  Big product;
   Jet jet;
   for (int level = n; level >= 1; --level) {  // `level` points remain after this step
     if (level == 2) jet.second = static_cast<double>(n) * (n - 1) * ((b[2] - 2.0 * b[1]) + b[0]);
     if (level == 1) jet.first = static_cast<double>(n) * (b[1] - b[0]);
-    for (int i = 0; i < level; ++i) b[i] = s * b[i] + t * b[i + 1];
+    // b_i <- s b_i + t b_{i+1} in place: the operators' temporaries (an allocation each) were most
+    // of the truth's time.
+    for (int i = 0; i < level; ++i) {
+      mpfr_mul(product.get(), t.get(), b[i + 1].get(), MPFR_RNDN);
+      mpfr_fma(b[i].get(), s.get(), b[i].get(), product.get(), MPFR_RNDN);
+    }
   }
   if (n == 1) jet.second = Big();
   if (n == 0) jet.first = jet.second = Big();
