@@ -316,7 +316,14 @@ int run_stress(const StressOptions& options) {
                               {"points_per_second", cell.seconds > 0 ? t.rows / cell.seconds : 0.0}});
     }
     if (options.json) std::printf("%s\n", out.dump(2).c_str());
-    if (reporting) report.write(options.report_directory, out);
+    if (reporting) {
+      try {
+        report.write(options.report_directory, out);
+      } catch (const std::exception& e) {  // a directory or file that cannot be written: named
+        std::fprintf(stderr, "bezinv: stress --report: %s\n", e.what());
+        return 2;
+      }
+    }
   }
   if (!options.json) {
     std::printf("bezinv stress: %zu rows, seed %llu, tolerance %.3g x diagonal (truths at %d bits, made in %.1f s)\n\n",

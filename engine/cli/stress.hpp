@@ -39,7 +39,7 @@ std::pair<int, int> parse_degrees(const std::string& range);
 std::vector<baselines::Library> parse_baselines(const std::string& list);
 
 // Prints the table (or one JSON object). Returns 0 when every status was right and every t there,
-// 1 otherwise.
+// 1 otherwise, 2 when the --report directory cannot be written (the message names what).
 int run_stress(const StressOptions& options);
 
 }  // namespace bezinv::cli

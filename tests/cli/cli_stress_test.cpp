@@ -123,6 +123,17 @@ print(len(plots), min(marks))
   EXPECT_GE(reproduced, 3);
 }
 
+// A report directory that cannot be made (a file is in the way): exit 2, the path named.
+TEST(CliStress, AReportDirectoryThatCannotBeWrittenIsNamed) {
+  ScratchDirectory scratch{"bezinv-stress-test-"};
+  const std::string blocked = scratch.write("blocked", "a file, not a directory");
+  const auto run = run_bezinv(scratch, "stress --families on_curve --degrees 2 --points 20 --report " +
+                                           bezinv::test_support::quoted(blocked + "/report"));
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find(blocked), std::string::npos) << run.err;
+  EXPECT_EQ(bezinv::test_support::read_file(blocked), "a file, not a directory");
+}
+
 TEST(CliStress, RefusesUnknownFamiliesKindsPathsAndDegrees) {
   ScratchDirectory scratch{"bezinv-stress-test-"};
   for (const auto& [arguments, named] :
