@@ -283,7 +283,7 @@ void StressTally::add(const StressRow& row, const PointResult& got, double diago
   const auto expected_index = static_cast<std::size_t>(row.expected), got_index = static_cast<std::size_t>(got.status);
   if (expected_index < kStatusCount && got_index < kStatusCount) ++confusion[expected_index][got_index];
   ambiguous += std::popcount(row.acceptable) > 1;
-  if (!(row.acceptable & bit(got.status))) {
+  if (!accepts(row, got.status)) {
     ++wrong_status;
     if (expected_index < kStatusCount && got_index < kStatusCount) ++wrong[expected_index][got_index];
     return;
@@ -301,11 +301,17 @@ void StressTally::add(const StressRow& row, const PointResult& got, double diago
     ++no_truth;
     return;
   }
-  double error = std::abs(got.t - row.t_true);
-  if (got.status == Status::double_point && !std::isnan(row.t2_true)) error = std::max(error, std::abs(got.t2 - row.t2_true));
+  const double error = parameter_error(row, got);
   dt.push_back(error);
   dt_over_bound.push_back(error / row.bound);
   if (std::isfinite(got.residual)) residual_error.push_back(std::abs(got.residual - row.distance) / diagonal);
+}
+
+double parameter_error(const StressRow& row, const PointResult& got) {
+  double error = std::abs(got.t - row.t_true);
+  if (got.status == Status::double_point && std::isfinite(row.t2_true) && std::isfinite(got.t2))
+    error = std::max(error, std::abs(got.t2 - row.t2_true));
+  return error;
 }
 
 Quantiles quantiles(std::vector<double> values) {

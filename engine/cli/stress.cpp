@@ -36,6 +36,28 @@ std::vector<std::string> split(const std::string& list) {
   return items;
 }
 
+// The value of `values` whose to_string is `name`, if any.
+template <class T>
+std::optional<T> named(const std::string& name, std::initializer_list<T> values) {
+  for (T value : values)
+    if (name == to_string(value)) return value;
+  return std::nullopt;
+}
+
+// "a,b,c" by `parse` (an optional per item); an unknown item or an empty list throws
+// std::invalid_argument naming the option and the item.
+template <class T, class Parse>
+std::vector<T> parse_list(const std::string& list, const char* option, const char* what, Parse parse) {
+  std::vector<T> values;
+  for (const std::string& item : split(list)) {
+    const std::optional<T> value = parse(item);
+    if (!value) throw std::invalid_argument(std::string(option) + ": unknown " + what + " '" + item + "'");
+    values.push_back(*value);
+  }
+  if (values.empty()) throw std::invalid_argument(std::string(option) + ": no " + what + " given");
+  return values;
+}
+
 // One curve of one cell and its rows.
 struct CurveRows {
   Family family;
@@ -113,38 +135,19 @@ const char* to_string(StressPath path) {
 }
 
 std::vector<Family> parse_families(const std::string& list) {
-  std::vector<Family> families;
-  for (const std::string& item : split(list)) {
-    const auto family = datasets::family_from_string(item);
-    if (!family) throw std::invalid_argument("--families: unknown family '" + item + "'");
-    families.push_back(*family);
-  }
-  if (families.empty()) throw std::invalid_argument("--families: no family given");
-  return families;
+  return parse_list<Family>(list, "--families", "family", datasets::family_from_string);
 }
 
 std::vector<CurveKind> parse_kinds(const std::string& list) {
-  std::vector<CurveKind> kinds;
-  for (const std::string& item : split(list)) {
-    if (item == "bezier") kinds.push_back(CurveKind::bezier);
-    else if (item == "rational_bezier") kinds.push_back(CurveKind::rational_bezier);
-    else if (item == "rational") kinds.push_back(CurveKind::rational);
-    else throw std::invalid_argument("--kinds: unknown kind '" + item + "'");
-  }
-  if (kinds.empty()) throw std::invalid_argument("--kinds: no kind given");
-  return kinds;
+  return parse_list<CurveKind>(list, "--kinds", "kind", [](const std::string& item) {
+    return named(item, {CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational});
+  });
 }
 
 std::vector<StressPath> parse_paths(const std::string& list) {
-  std::vector<StressPath> paths;
-  for (const std::string& item : split(list)) {
-    if (item == "default") paths.push_back(StressPath::default_path);
-    else if (item == "svd-only") paths.push_back(StressPath::svd_only);
-    else if (item == "no-refine") paths.push_back(StressPath::no_refine);
-    else throw std::invalid_argument("--paths: unknown path '" + item + "'");
-  }
-  if (paths.empty()) throw std::invalid_argument("--paths: no path given");
-  return paths;
+  return parse_list<StressPath>(list, "--paths", "path", [](const std::string& item) {
+    return named(item, {StressPath::default_path, StressPath::svd_only, StressPath::no_refine});
+  });
 }
 
 std::pair<int, int> parse_degrees(const std::string& range) {

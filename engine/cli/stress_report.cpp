@@ -53,10 +53,7 @@ nlohmann::json curve_json(const Curve& curve) {
 
 double ratio_of(const StressRow& row, const PointResult& got) {
   if (got.status != row.expected || !std::isfinite(got.t) || !std::isfinite(row.t_true)) return kNaN;
-  double error = std::abs(got.t - row.t_true);
-  if (got.status == Status::double_point && std::isfinite(row.t2_true) && std::isfinite(got.t2))
-    error = std::max(error, std::abs(got.t2 - row.t2_true));
-  return error / row.bound;
+  return datasets::parameter_error(row, got) / row.bound;
 }
 
 // A bar chart of the histogram of log10(ratio).
@@ -123,34 +120,38 @@ std::string scatter_svg(const std::vector<std::array<double, 2>>& points) {
 
 }  // namespace
 
+void StressReport::Errors::add(double t_true, double error, double ratio, std::mt19937_64& rng) {
+  ++compared;
+  worst = std::max(worst, ratio);
+  if (ratio == 0) {
+    ++exact;
+  } else {
+    const int bin = static_cast<int>(std::floor((std::log10(ratio) - kFirstBin) / kBinWidth));
+    ++histogram[std::clamp(bin, 0, kBins - 1)];
+  }
+  // A uniform sample of the compared rows (reservoir sampling).
+  const std::array<double, 2> point{t_true, error};
+  if (scatter.size() < kScatter) {
+    scatter.push_back(point);
+  } else {
+    const std::size_t k = std::uniform_int_distribution<std::size_t>(0, compared - 1)(rng);
+    if (k < kScatter) scatter[k] = point;
+  }
+}
+
 void StressReport::add(const Origin& origin, const StressRow& row, const PointResult& got) {
   FamilyData& f = families_[origin.family];
   ++f.rows;
   const auto e = static_cast<std::size_t>(row.expected), g = static_cast<std::size_t>(got.status);
   if (e < datasets::kStatusCount && g < datasets::kStatusCount) ++f.confusion[e][g];
-  const bool right = (row.acceptable >> static_cast<unsigned>(got.status)) & 1u;
   const double ratio = ratio_of(row, got);
-  if (!right) {
+  if (!datasets::accepts(row, got.status)) {
     ++f.wrong;
     if (wrong_.size() < kWrongKept) wrong_.push_back({origin, *origin.curve, row, got, ratio});
     return;
   }
   if (std::isnan(ratio)) return;
-  ++f.compared;
-  if (ratio == 0) {
-    ++f.exact;
-  } else {
-    const int bin = static_cast<int>(std::floor((std::log10(ratio) - kFirstBin) / kBinWidth));
-    ++f.histogram[std::clamp(bin, 0, kBins - 1)];
-  }
-  // A uniform sample of the compared rows (reservoir sampling).
-  const std::array<double, 2> point{row.t_true, ratio * row.bound};
-  if (f.scatter.size() < kScatter) {
-    f.scatter.push_back(point);
-  } else {
-    const std::size_t k = std::uniform_int_distribution<std::size_t>(0, f.compared - 1)(sample_rng_);
-    if (k < kScatter) f.scatter[k] = point;
-  }
+  f.errors.add(row.t_true, ratio * row.bound, ratio, sample_rng_);
   if (f.worst.size() < kWorst || ratio > f.worst.back().ratio) {
     if (f.worst.size() == kWorst) f.worst.pop_back();
     f.worst.push_back({origin, *origin.curve, row, got, ratio});
@@ -168,16 +169,7 @@ void StressReport::add_baseline(datasets::Family family, const std::string& libr
   if (std::isnan(row.t_true)) return;
   double error = std::abs(t - row.t_true);
   if (row.expected == Status::double_point && std::isfinite(row.t2_true)) error = std::min(error, std::abs(t - row.t2_true));
-  const double ratio = error / row.bound;
-  ++b.compared;
-  b.worst = std::max(b.worst, ratio);
-  if (ratio == 0) {
-    ++b.exact;
-  } else {
-    const int bin = static_cast<int>(std::floor((std::log10(ratio) - kFirstBin) / kBinWidth));
-    ++b.histogram[std::clamp(bin, 0, kBins - 1)];
-  }
-  if (b.scatter.size() < kScatter) b.scatter.push_back({row.t_true, error});
+  b.errors.add(row.t_true, error, error / row.bound, sample_rng_);
 }
 
 void StressReport::write(const std::filesystem::path& directory, const nlohmann::json& summary) const {
@@ -237,21 +229,21 @@ void StressReport::write(const std::filesystem::path& directory, const nlohmann:
        << "<th>worst error / bound</th></tr>\n";
   for (const auto& [family, f] : families_) {
     html << "<tr" << (f.wrong ? " class=\"bad\"" : "") << "><td><a href=\"#" << datasets::to_string(family) << "\">"
-         << datasets::to_string(family) << "</a></td><td>" << f.rows << "</td><td>" << f.wrong << "</td><td>" << f.compared
-         << "</td><td>" << f.exact << "</td><td>" << (f.worst.empty() ? std::string("-") : number(f.worst.front().ratio))
+         << datasets::to_string(family) << "</a></td><td>" << f.rows << "</td><td>" << f.wrong << "</td><td>" << f.errors.compared
+         << "</td><td>" << f.errors.exact << "</td><td>" << (f.worst.empty() ? std::string("-") : number(f.worst.front().ratio))
          << "</td></tr>\n";
   }
   html << "</table>\n";
 
   for (const auto& [family, f] : families_) {
     html << "<h2 id=\"" << datasets::to_string(family) << "\">" << datasets::to_string(family) << "</h2>\n<p>bezinv</p>\n<div>\n"
-         << histogram_svg(f.histogram, f.exact) << scatter_svg(f.scatter) << "</div>\n";
+         << histogram_svg(f.errors.histogram, f.errors.exact) << scatter_svg(f.errors.scatter) << "</div>\n";
     if (const auto it = baselines_.find(family); it != baselines_.end())
       for (const auto& [library, b] : it->second)
         html << "<p>" << library << " on the same rows (those whose truth is a point of the segment, kinds with one "
-             << "denominator): " << b.compared << " compared, worst error / bound " << number(b.worst) << ", "
+             << "denominator): " << b.errors.compared << " compared, worst error / bound " << number(b.errors.worst) << ", "
              << b.no_answer << " without an answer</p>\n<div>\n"
-             << histogram_svg(b.histogram, b.exact) << scatter_svg(b.scatter) << "</div>\n";
+             << histogram_svg(b.errors.histogram, b.errors.exact) << scatter_svg(b.errors.scatter) << "</div>\n";
     html << "<table>\n<tr><th>expected \\ got</th>";
     for (std::size_t g = 0; g < datasets::kStatusCount; ++g) html << "<th>" << bezinv::to_string(static_cast<Status>(g)) << "</th>";
     html << "</tr>\n";

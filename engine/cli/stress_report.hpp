@@ -52,20 +52,25 @@ class StressReport {
     PointResult got;
     double ratio;  // |t - t_true| / bound, NaN where t is not compared
   };
-  struct FamilyData {
-    std::array<std::size_t, kBins> histogram{};
-    std::size_t exact = 0, compared = 0, rows = 0, wrong = 0;
-    std::array<std::array<std::size_t, datasets::kStatusCount>, datasets::kStatusCount> confusion{};
-    std::vector<std::array<double, 2>> scatter;  // (t_true, |t - t_true|), a uniform sample
-    std::vector<Kept> worst;                     // the largest ratios, at most kWorst
-  };
   static constexpr std::size_t kScatter = 3000, kWorst = 8, kWrongKept = 40;
+  // The errors of one source (bezinv, or a baseline) on one family: what its two plots show.
+  struct Errors {
+    std::array<std::size_t, kBins> histogram{};
+    std::size_t exact = 0, compared = 0;
+    double worst = 0;                            // the largest ratio
+    std::vector<std::array<double, 2>> scatter;  // (t_true, |t - t_true|), a uniform sample
+    void add(double t_true, double error, double ratio, std::mt19937_64& rng);
+  };
+  struct FamilyData {
+    Errors errors;
+    std::size_t rows = 0, wrong = 0;
+    std::array<std::array<std::size_t, datasets::kStatusCount>, datasets::kStatusCount> confusion{};
+    std::vector<Kept> worst;  // the rows of the largest ratios, at most kWorst
+  };
   std::map<datasets::Family, FamilyData> families_;
   struct BaselineData {
-    std::array<std::size_t, kBins> histogram{};
-    std::size_t exact = 0, compared = 0, no_answer = 0;
-    double worst = 0;
-    std::vector<std::array<double, 2>> scatter;
+    Errors errors;
+    std::size_t no_answer = 0;
   };
   std::map<datasets::Family, std::map<std::string, BaselineData>> baselines_;
   std::vector<Kept> wrong_;

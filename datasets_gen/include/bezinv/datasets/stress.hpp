@@ -89,6 +89,15 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& curve, cons
 
 inline constexpr std::size_t kStatusCount = 6;  // Status::ok .. Status::failed
 
+// Whether `status` is one of the row's right ones.
+inline bool accepts(const StressRow& row, Status status) {
+  return (row.acceptable >> static_cast<unsigned>(status)) & 1u;
+}
+
+// |t - t_true| of an answer (for a double point the larger of both parameters' errors, where both
+// are there); NaN where the answer has no t.
+double parameter_error(const StressRow& row, const PointResult& got);
+
 // The engine's answers against the truth, for one cell of the report (family x kind x degree x path).
 struct StressTally {
   std::size_t rows = 0, ambiguous = 0;
