@@ -48,10 +48,10 @@ constexpr const char* kAddressSpace = "2147483648";
 // Longest stderr line accepted: "bezinv: ", a scratch path, and a few 80-character excerpts.
 constexpr std::size_t kMaxErrorLine = 600;
 
-constexpr const char* kCurvesJson =
+constexpr const char* kArchJson =
     R"({"curves": [{"id": "arch", "kind": "bezier", "points": [[0, 0], [1, 2], [3, 2], [4, 0]]}]})";
 
-struct Outcome {
+struct Refusal {
   int exit_code = -1;
   std::string err;
 };
@@ -59,12 +59,12 @@ struct Outcome {
 class CliHostileInput : public ::testing::Test {
  protected:
   ScratchDirectory scratch{"bezinv-cli-hostile-test-"};
-  std::string curves = scratch.write("curves.json", kCurvesJson);
+  std::string curves = scratch.write("curves.json", kArchJson);
   std::string points = scratch.write("points.csv", "curve,x,y\narch,2,1.5\n");
   std::string out = scratch.path("out.csv");
 
   // `setup` runs first in the same shell (a background writer into a FIFO).
-  Outcome run(const std::string& arguments, const std::string& setup = "") const {
+  Refusal run(const std::string& arguments, const std::string& setup = "") const {
     const std::string err = scratch.path("stderr.txt");
     std::string command = setup + "timeout 120 ";
     if (!kAddressSanitizer) command += std::string("prlimit --as=") + kAddressSpace + " ";
@@ -80,7 +80,7 @@ class CliHostileInput : public ::testing::Test {
 
   void expect_refused(const std::string& arguments, std::initializer_list<std::string> fragments,
                       const std::string& setup = "") const {
-    const Outcome result = run(arguments, setup);
+    const Refusal result = run(arguments, setup);
     const std::string& err = result.err;
     EXPECT_EQ(result.exit_code, 2) << err;  // the input-error code: not a crash, not 124 (timeout)
     EXPECT_TRUE(err.starts_with("bezinv: ")) << err;
@@ -168,7 +168,7 @@ TEST_F(CliHostileInput, InputsWithoutLineBreaksStopAtTheLimits) {
 }
 
 TEST_F(CliHostileInput, CurvesFileLargerThanTheCapIsRefusedFromItsSize) {
-  const std::string path = scratch.write("big.json", kCurvesJson);
+  const std::string path = scratch.write("big.json", kArchJson);
   fs::resize_file(path, std::uint64_t{1} << 30);  // sparse: nothing to read, nothing on disk
   expect_refused(invert(path, points), {"big.json: 1073741824 bytes, more than 268435456 bytes"});
 }
@@ -206,7 +206,7 @@ TEST_F(CliHostileInput, QuotedCsvFieldsGiveTheSameRowsAsBareOnes) {
   ASSERT_EQ(run(invert(curves, bare)).exit_code, 0);
   const std::string expected = read_file(out);
   fs::remove(out);
-  const Outcome result = run(invert(curves, quoted_csv));
+  const Refusal result = run(invert(curves, quoted_csv));
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(read_file(out), expected);
   EXPECT_EQ(std::count(expected.begin(), expected.end(), '\n'), 5);  // header + one row per point

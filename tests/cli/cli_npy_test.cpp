@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "support/de_casteljau.hpp"
+#include "support/npy_bytes.hpp"
 #include "support/run_bezinv.hpp"
 #include "support/scratch_directory.hpp"
 #include "support/split.hpp"
@@ -40,25 +41,13 @@ using bezinv::test_support::Vec2;
 const std::vector<Vec2> kCubic{{0, 0}, {1, 2}, {3, 2}, {4, 0}};
 const std::vector<Vec2> kLine{{0, 0}, {2, 1}};
 
-constexpr const char* kCurvesJson = R"({"curves": [
+constexpr const char* kCubicAndLineJson = R"({"curves": [
   {"id": "cubic", "kind": "bezier", "points": [[0, 0], [1, 2], [3, 2], [4, 0]]},
   {"id": "line", "kind": "bezier", "points": [[0, 0], [2, 1]]}
 ]})";
 
-template <class T>
-void append_le(std::string& bytes, T value) {
-  const auto bits = std::bit_cast<std::conditional_t<sizeof(T) == 8, std::uint64_t, std::uint32_t>>(value);
-  for (std::size_t i = 0; i < sizeof(T); ++i) bytes += static_cast<char>((bits >> (8 * i)) & 0xff);
-}
-
-// numpy format 1.0: magic, version, header length, dict padded to 64 bytes, data.
-std::string npy_file(const std::string& descr, const std::string& shape, const std::string& data) {
-  std::string dict = "{'descr': '" + descr + "', 'fortran_order': False, 'shape': " + shape + ", }";
-  while ((10 + dict.size() + 1) % 64 != 0) dict += ' ';
-  dict += '\n';
-  return std::string("\x93NUMPY\x01\x00", 8) + static_cast<char>(dict.size() & 0xff) + static_cast<char>(dict.size() >> 8) +
-         dict + data;
-}
+using bezinv::test_support::append_le;
+using bezinv::test_support::npy_file;
 
 // One record of OUT.npy.
 struct Record {
@@ -85,16 +74,12 @@ std::vector<Record> read_results_npy(const std::string& bytes, std::string* dict
   return records;
 }
 
-std::string csv_number(double v) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
+using bezinv::test_support::csv_number;
 
 class CliNpy : public ::testing::Test {
  protected:
   ScratchDirectory scratch{"bezinv-cli-npy-test-"};
-  std::string curves = scratch.write("curves.json", kCurvesJson);
+  std::string curves = scratch.write("curves.json", kCubicAndLineJson);
   // Known parameters on the cubic; a few off the segment / off the curve.
   const std::vector<double> params{0.0, 0.1, 0.25, 0.5, 0.6180339887, 0.75, 0.9, 1.0, 0.3, 0.45, 0.05};
 

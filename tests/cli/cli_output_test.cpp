@@ -30,6 +30,7 @@
 #include <tuple>
 #include <vector>
 
+#include "support/npy_bytes.hpp"
 #include "support/run_bezinv.hpp"
 #include "support/scratch_directory.hpp"
 #include "support/split.hpp"
@@ -45,7 +46,7 @@ using bezinv::test_support::run_bezinv;
 using bezinv::test_support::ScratchDirectory;
 using bezinv::test_support::split;
 
-constexpr const char* kCurvesJson = R"({"curves": [
+constexpr const char* kCubicJson = R"({"curves": [
   {"id": "cubic", "kind": "bezier", "points": [[0, 0], [1, 2], [3, 2], [4, 0]]}
 ]})";
 // Points of the cubic at t = 0, 0.5, 1 and one off it.
@@ -54,19 +55,12 @@ constexpr const char* kPointsCsv = "curve,x,y\ncubic,0,0\ncubic,2,1.5\ncubic,4,0
 // No bounded wait below is meant to be reached: it only stops a broken build from hanging ctest.
 constexpr auto kPatience = 60s;
 
-// numpy format 1.0: magic, version, header length, dict padded to 64 bytes, data (little-endian).
-std::string npy_file(const std::string& descr, std::size_t rows, const std::string& columns, const std::string& data) {
-  std::string dict = "{'descr': '" + descr + "', 'fortran_order': False, 'shape': (" + std::to_string(rows) + columns + "), }";
-  while ((10 + dict.size() + 1) % 64 != 0) dict += ' ';
-  dict += '\n';
-  return std::string("\x93NUMPY\x01\x00", 8) + static_cast<char>(dict.size() & 0xff) + static_cast<char>(dict.size() >> 8) +
-         dict + data;
-}
+using bezinv::test_support::append_le;
+using bezinv::test_support::npy_file;
 
-template <class T>
-void append_le(std::string& bytes, T value) {
-  const auto bits = std::bit_cast<std::conditional_t<sizeof(T) == 8, std::uint64_t, std::uint32_t>>(value);
-  for (std::size_t i = 0; i < sizeof(T); ++i) bytes += static_cast<char>((bits >> (8 * i)) & 0xff);
+// A file of `rows` points, (x, y) each.
+std::string points_npy(std::size_t rows, const std::string& data) {
+  return npy_file("<f8", "(" + std::to_string(rows) + ", 2)", data);
 }
 
 // Points on the cubic x = 3t + 3t^2 - 2t^3, y = 6t(1 - t), cycling through 1000 parameters.
@@ -78,7 +72,7 @@ std::string cubic_points_npy(std::size_t rows) {
     append_le(data, 3 * t + 3 * t * t - 2 * t * t * t);
     append_le(data, 6 * t * (1 - t));
   }
-  return npy_file("<f8", rows, ", 2", data);
+  return points_npy(rows, data);
 }
 
 // The same, written to `path` 1000 rows at a time: a big input without a big string in this
@@ -87,7 +81,7 @@ std::string write_cubic_points_npy(const std::string& path, std::size_t rows) {
   const std::string block = cubic_points_npy(1000);
   const std::size_t data_offset = block.size() - 1000 * 16;
   std::ofstream out(path, std::ios::binary);
-  const std::string header = npy_file("<f8", rows, ", 2", "");
+  const std::string header = points_npy(rows, "");
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
   for (std::size_t done = 0; done < rows; done += 1000) {
     const std::size_t count = std::min<std::size_t>(1000, rows - done);
@@ -100,7 +94,7 @@ std::string write_cubic_points_npy(const std::string& path, std::size_t rows) {
 std::string four_points_npy() {
   std::string data;
   for (const double coordinate : {0.0, 0.0, 2.0, 1.5, 4.0, 0.0, 2.0, 5.0}) append_le(data, coordinate);
-  return npy_file("<f8", 4, ", 2", data);
+  return points_npy(4, data);
 }
 
 std::string cubic_points_csv(std::size_t rows) {
@@ -283,7 +277,7 @@ class FifoDrain {
 class CliOutput : public ::testing::Test {
  protected:
   ScratchDirectory scratch{"bezinv-cli-output-test-"};
-  std::string curves = scratch.write("curves.json", kCurvesJson);
+  std::string curves = scratch.write("curves.json", kCubicJson);
   std::string points = scratch.write("points.csv", kPointsCsv);
   std::string points_npy = scratch.write("points.npy", four_points_npy());
 
@@ -340,7 +334,7 @@ bool running_as_root() { return ::geteuid() == 0; }
 // ---- OUT is an input --------------------------------------------------------------------------
 
 TEST_F(CliOutput, RefusesOutThatIsAnInputUnderAnySpelling) {
-  const std::string index = scratch.write("index.npy", npy_file("<i8", 4, ",", std::string(32, '\0')));
+  const std::string index = scratch.write("index.npy", npy_file("<i8", "(4,)", std::string(32, '\0')));
   fs::create_symlink("points.csv", scratch.root() / "points-link.csv");
   fs::create_hard_link(scratch.root() / "points.csv", scratch.root() / "points-hard.csv");
   fs::create_directory_symlink(scratch.root(), scratch.root() / "sub" / "up");

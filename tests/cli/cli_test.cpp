@@ -39,28 +39,24 @@ using bezinv::test_support::Vec2;
 
 // The cubic's x(t) = 3t + 3t^2 - 2t^3 is increasing on [-0.36, 1.36], so each of the points below
 // has exactly one parameter on the whole curve, not only on the segment.
-const std::vector<Vec2> kCubic{{0, 0}, {1, 2}, {3, 2}, {4, 0}};
+const std::vector<Vec2> kArch{{0, 0}, {1, 2}, {3, 2}, {4, 0}};
 // A quarter of the unit circle (weights 1, 1/sqrt(2), 1).
 const std::vector<Vec2> kArc{{1, 0}, {1, 1}, {0, 1}};
 const std::vector<double> kArcWeights{1, 0.70710678118654752, 1};
 
-constexpr const char* kCurvesJson = R"({"curves": [
+constexpr const char* kCubicAndArcJson = R"({"curves": [
   {"id": "cubic", "kind": "bezier", "points": [[0, 0], [1, 2], [3, 2], [4, 0]]},
   {"id": "arc", "kind": "rational_bezier", "points": [[1, 0], [1, 1], [0, 1]], "weights": [1, 0.70710678118654752, 1]}
 ]})";
 
-std::string csv_number(double v) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
+using bezinv::test_support::csv_number;
 
 std::string point_row(const std::string& curve, Vec2 p) { return curve + "," + csv_number(p[0]) + "," + csv_number(p[1]) + "\n"; }
 
 class CliInvert : public ::testing::Test {
  protected:
   ScratchDirectory scratch{"bezinv-cli-test-"};
-  std::string curves = scratch.write("curves.json", kCurvesJson);
+  std::string curves = scratch.write("curves.json", kCubicAndArcJson);
   std::string out = scratch.path("out.csv");
 
   std::string invert_arguments(const std::string& curves_path, const std::string& points_path) const {
@@ -81,11 +77,11 @@ class CliInvert : public ::testing::Test {
 
 TEST_F(CliInvert, KnownParametersComeBackInOrderWithPerRowStatuses) {
   std::string csv = "curve,x,y\n";
-  csv += point_row("cubic", de_casteljau(kCubic, 0.25));                    // 0 ok, t = 0.25
+  csv += point_row("cubic", de_casteljau(kArch, 0.25));                    // 0 ok, t = 0.25
   csv += point_row("nope", {1, 1});                                         // 1 unknown id
   csv += point_row("1", rational_de_casteljau(kArc, kArcWeights, 0.6));     // 2 by index: ok, t = 0.6
   csv += "cubic,nan,1\n";                                                   // 3 non-finite x
-  csv += point_row("cubic", de_casteljau(kCubic, 1.3));                     // 4 on the extension
+  csv += point_row("cubic", de_casteljau(kArch, 1.3));                     // 4 on the extension
   csv += point_row("cubic", {100, 100});                                    // 5 far away
   csv += point_row("5", {0, 0});                                            // 6 index past the end
   csv += point_row("arc", rational_de_casteljau(kArc, kArcWeights, 0.0));  // 7 end point, t = 0

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "support/bits.hpp"
 #include "bezinv/curve.hpp"
 #include "bezinv/datasets/curve_sampling.hpp"
 #include "bezinv/datasets/degree_elevation.hpp"
@@ -27,7 +28,8 @@
 namespace bezinv::datasets {
 namespace {
 
-constexpr CurveKind kKinds[] = {CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational};
+using test_support::kAllKinds;
+
 constexpr ControlPolygon kPolygons[] = {ControlPolygon::unit_square, ControlPolygon::perturbed_arc};
 
 exact::RationalCurve exact_curve(const Curve& c) {
@@ -81,7 +83,7 @@ double distance_to(const Sampled& p, Point q) {
 }
 
 TEST(DatasetsRandom, SameSeedSameCurveAndUniformInRange) {
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (ControlPolygon polygon : kPolygons) {
       std::mt19937_64 a(42), b(42), c(43);
       const Curve ca = random_curve(kind, 7, a, polygon), cb = random_curve(kind, 7, b, polygon);
@@ -106,7 +108,7 @@ TEST(DatasetsRandom, SameSeedSameCurveAndUniformInRange) {
 }
 
 TEST(DatasetsRandom, KindsHaveTheirShape) {
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (ControlPolygon polygon : kPolygons)
       for (int degree = 1; degree <= 20; ++degree) {
         std::mt19937_64 rng(degree);
@@ -171,7 +173,7 @@ TEST(DatasetsPaperCurves, MatchThePaper) {
 // Every on-curve set: the point is P(t) rounded, checked exactly.
 TEST(DatasetsOnCurve, PointsAreOnTheCurveAtTheirParameter) {
   int checked = 0;
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (ControlPolygon polygon : kPolygons)
       for (int degree : {1, 2, 3, 5, 8, 13, 20}) {
         const std::uint64_t seed = 1000 + degree;
@@ -210,7 +212,7 @@ TEST(DatasetsOnCurve, PointsAreOnTheCurveAtTheirParameter) {
 
 // Isolation, checked by brute force: no other branch within kIsolation * diagonal.
 TEST(DatasetsOnCurve, SegmentPointsAreIsolated) {
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int degree : {3, 8, 20}) {
       const std::uint64_t seed = 77 + degree;
       std::mt19937_64 rng(seed);
@@ -235,7 +237,7 @@ TEST(DatasetsOnCurve, SegmentPointsAreIsolated) {
 // over 20001 samples plus the ends), at the stated distance, and the extension keeps away.
 TEST(DatasetsOffCurve, NearestPointIsTheConstructedOne) {
   int checked = 0, at_ends = 0;
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (ControlPolygon polygon : kPolygons)
       for (int degree : {1, 2, 4, 9, 15, 20}) {
         const std::uint64_t seed = 500 + degree;
@@ -288,7 +290,7 @@ TEST(DatasetsOffCurve, NearestPointIsTheConstructedOne) {
 }
 
 TEST(DatasetsSelfIntersection, ConstructedCrossingHolds) {
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int degree = 3; degree <= 20; degree += 1) {
       const std::uint64_t seed = 9000 + degree;
       std::mt19937_64 rng(seed);
@@ -326,7 +328,7 @@ TEST(DatasetsSelfIntersection, ConstructedCrossingHolds) {
 }
 
 TEST(DatasetsDegreeElevation, PreservesTheCurve) {
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int degree : {1, 2, 3, 7, 12, 20})
       for (int times : {1, 3}) {
         const std::uint64_t seed = 31 * degree + times;
@@ -354,7 +356,7 @@ TEST(DatasetsDegreeElevation, PreservesTheCurve) {
 }
 
 TEST(DatasetsTranslation, MovesEveryPointByTheOffset) {
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int degree : {1, 4, 15}) {
       std::mt19937_64 rng(degree);
       const Curve c = random_curve(kind, degree, rng);
@@ -375,7 +377,7 @@ TEST(DatasetsTranslation, MovesEveryPointByTheOffset) {
 // improper(Q)(t) = Q(t^2), exactly up to the rounding of the coefficients; and each coefficient
 // matches an independent route (power basis: substitute t^2, convert back).
 TEST(DatasetsImproper, EqualsQOfTSquared) {
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int m = 1; m <= 10; ++m) {
       std::mt19937_64 rng(m);
       const Curve q = random_curve(kind, m, rng, ControlPolygon::perturbed_arc);

@@ -2,6 +2,7 @@
 // segment comes within a radius of a point. Checked against the curve's extension evaluated
 // independently: the homogeneous form sum c_i C(n,i) (1-t)^(n-i) t^i in long double at each t,
 // scaled by 1/|t| far out so nothing overflows (not the engine's reparametrization in s).
+#include "support/bits.hpp"
 #include "extension.hpp"
 
 #include <gtest/gtest.h>
@@ -21,6 +22,8 @@
 
 namespace bezinv {
 namespace {
+
+using test_support::kAllKinds;
 
 using Real = long double;
 
@@ -66,7 +69,6 @@ Real nearest_on_grid(const std::vector<std::array<Real, 2>>& grid, double u0, do
   return nearest;
 }
 
-constexpr std::array<CurveKind, 3> kKinds{CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational};
 
 // Never clear where a point of the extension is within the radius: with the radius just above
 // the nearest point of the grid, the answer must be no. Below it the proof is expected to succeed
@@ -77,7 +79,7 @@ constexpr std::array<CurveKind, 3> kKinds{CurveKind::bezier, CurveKind::rational
 TEST(Extension, NeverClearWhereThePointIsWithinTheRadiusOfTheExtension) {
   const std::vector<Real> ts = extension_parameters();
   int tried = 0, cleared_below = 0, cleared_half = 0, around_extension = 0, cleared_around_extension = 0;
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int n : {2, 3, 5, 8, 12, 20, 32}) {
       std::mt19937_64 rng(911 + 31 * n + static_cast<int>(kind));
       for (auto polygon : {datasets::ControlPolygon::perturbed_arc, datasets::ControlPolygon::unit_square}) {
@@ -120,7 +122,7 @@ TEST(Extension, NeverClearWhereThePointIsWithinTheRadiusOfTheExtension) {
 // radius of a millionth of the curve's size, never clear.
 TEST(Extension, PointsOnTheExtensionAreNeverClear) {
   int tested = 0;
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int n : {2, 3, 4, 7, 10, 16, 24, 32}) {
       std::mt19937_64 rng(77 + n + 5 * static_cast<int>(kind));
       const detail::PlanData plan =

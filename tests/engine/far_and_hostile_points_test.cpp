@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "support/bits.hpp"
 #include "bezinv/curve.hpp"
 #include "bezinv/datasets/curve_sampling.hpp"
 #include "bezinv/datasets/random_curve.hpp"
@@ -30,6 +31,8 @@
 namespace bezinv {
 namespace {
 
+using test_support::kAllKinds;
+
 using test_support::ExactCurve;
 using test_support::expect_known;
 using test_support::Findings;
@@ -37,7 +40,6 @@ using test_support::kEps;
 using test_support::known_at;
 using test_support::KnownParameter;
 
-constexpr CurveKind kKinds[] = {CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational};
 constexpr double kLargest = std::numeric_limits<double>::max();
 
 // The curve scaled by s (every coordinate; rounded once per coefficient).
@@ -83,7 +85,7 @@ TEST(OrdinaryFarAndHostile, TranslatedCurvesInvertAsAtTheOrigin) {
   Findings findings("translated by up to 1e12 (d,d), (d,-5d)"), agreement("translated: t as at the origin");
   Findings loose("translated, tolerance above the coordinates' rounding");
   int skipped_offsets = 0, curves = 0, must_be_ok = 0, must_be_off = 0, undecided = 0;
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int n = 2; n <= 10; n += 2)
       for (double size : {1.0, 1000.0}) {
         const std::uint64_t seed = 100ULL * static_cast<int>(kind) + n + (size > 1 ? 50 : 0);
@@ -221,7 +223,7 @@ TEST(OrdinaryFarAndHostile, MapCoordinates) {
 TEST(OrdinaryFarAndHostile, HugeAndTinyCurves) {
   Findings findings("control points near 1e154 and 1e-154");
   int skipped = 0;
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int n = 2; n <= 12; n += 2)
       for (double s : {1e154, 3e153, 1e-154, 3e-155}) {
         const std::uint64_t seed = 300ULL + 100ULL * static_cast<int>(kind) + n;
@@ -330,7 +332,7 @@ TEST(OrdinaryFarAndHostile, FarPointsAreOffCurveAtTheNearestDistance) {
   const std::vector<Point> extreme{{1e200, 1e200},        {1e200, -1e200}, {1.7e308, 0},       {-1.7e308, 0},
                                    {0, 1.7e308},          {0, -1.7e308},   {1.7e308, 1.7e308}, {-1.7e308, 1.7e308},
                                    {kLargest, -kLargest}, {-kLargest, 0},  {1e300, 1e-300},    {-1e250, 1e308}};
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int n : {2, 3, 5, 8, 13})
       for (double s : {1.0, 1e154, 1e-154, 1e300}) {
         const std::uint64_t seed = 600ULL + 100ULL * static_cast<int>(kind) + n;

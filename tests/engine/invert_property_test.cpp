@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "support/bits.hpp"
 #include "bezinv/curve.hpp"
 #include "plan_data.hpp"
 #include "bezinv/datasets/curve_sampling.hpp"
@@ -56,6 +57,9 @@
 namespace bezinv {
 namespace {
 
+using test_support::same_bits;
+using test_support::kAllKinds;
+
 using datasets::ControlPolygon;
 using datasets::CurveSampling;
 using datasets::KnownPoint;
@@ -67,7 +71,6 @@ constexpr double kResidualRelative = 1e-12;
 constexpr double kParameterError = 1e-8;
 constexpr double kWellConditioned = 1e-9;  // e_t at most this: the fixed bound kParameterError applies
 
-constexpr CurveKind kKinds[] = {CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational};
 constexpr ControlPolygon kPolygons[] = {ControlPolygon::unit_square, ControlPolygon::perturbed_arc};
 
 // ---- the cases -----------------------------------------------------------------------------------
@@ -107,7 +110,7 @@ Case make_case(std::string name, Curve curve, std::uint64_t seed) {
 const std::vector<Case>& random_cases() {
   static const std::vector<Case> cases = [] {
     std::vector<Case> out;
-    for (CurveKind kind : kKinds)
+    for (CurveKind kind : kAllKinds)
       for (int degree = 1; degree <= 20; ++degree)
         for (ControlPolygon polygon : kPolygons) {
           if (test_support::thinned_out(static_cast<std::size_t>(kind) + static_cast<std::size_t>(polygon) + degree))
@@ -268,7 +271,7 @@ TEST(InvertProperty, WithinToleranceOfTheCurve) {
 
 TEST(InvertProperty, ConstructedSelfIntersections) {
   Measured m{"double points (t and t2)"};
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int degree = 3; degree <= 20; ++degree) {
       const std::uint64_t seed = seed_of(kind, degree, ControlPolygon::unit_square, 5);
       std::mt19937_64 rng(seed);
@@ -296,7 +299,7 @@ TEST(InvertProperty, ConstructedSelfIntersections) {
 
 TEST(InvertProperty, DegreeElevatedCurvesReduceAndInvertAsWell) {
   Measured m{"degree-elevated"};
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int degree = 1; degree <= 15; ++degree)
       for (int times : {1, 2, 4}) {
         const std::uint64_t seed = seed_of(kind, degree, ControlPolygon::perturbed_arc, 10 + times);
@@ -316,7 +319,7 @@ TEST(InvertProperty, DegreeElevatedCurvesReduceAndInvertAsWell) {
 
 TEST(InvertProperty, TranslatedFarFromTheOrigin) {
   Measured on{"translated ~(1e6,-1e6): on segment"}, off{"translated ~(1e6,-1e6): off curve"};
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int degree = 1; degree <= 20; ++degree) {
       const std::uint64_t seed = seed_of(kind, degree, ControlPolygon::perturbed_arc, 20);
       std::mt19937_64 rng(seed);
@@ -340,7 +343,7 @@ TEST(InvertProperty, TranslatedFarFromTheOrigin) {
 TEST(InvertProperty, ImproperCurvesAnswerEachPointAtItsParameterOnTheSegment) {
   Measured on{"improper Q(t^2): on segment"}, off{"improper Q(t^2): off curve"};
   int rows = 0;
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int m = 1; m <= 10; ++m) {
       const std::uint64_t seed = seed_of(kind, m, ControlPolygon::perturbed_arc, 30);
       std::mt19937_64 rng(seed);
@@ -368,7 +371,6 @@ TEST(InvertProperty, ImproperCurvesAnswerEachPointAtItsParameterOnTheSegment) {
 
 // ---- the batched engine ----------------------------------------------------------------------------
 
-bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
 ::testing::AssertionResult identical(const PointResult& a, const PointResult& b) {
   if (same_bits(a.t, b.t) && same_bits(a.t2, b.t2) && same_bits(a.residual, b.residual) &&
@@ -579,7 +581,7 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
       points.insert(points.end(), set.begin(), set.end());
     for (const KnownPoint& k : points) compare(c, k);
   }
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int degree = 3; degree <= 12; ++degree) {
       const std::uint64_t seed = seed_of(kind, degree, ControlPolygon::unit_square, 9);
       std::mt19937_64 rng(seed);
@@ -624,7 +626,7 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
 TEST(InvertProperty, OffTheCurveAnswersWithoutTheSvdAreTheSvdPathsAnswers) {
   const InvertOptions svd_only{.fast_path = false};
   int fast_off_curve = 0, rows = 0, outside_segment = 0;
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int degree = 2; degree <= 12; ++degree) {
       const std::uint64_t seed = seed_of(kind, degree, ControlPolygon::unit_square, 21);
       std::mt19937_64 rng(seed);

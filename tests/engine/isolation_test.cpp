@@ -33,13 +33,13 @@ namespace bezinv {
 namespace {
 
 // Both kinds the certificate covers: one denominator, and separate ones for x and y.
-constexpr CurveKind kKinds[] = {CurveKind::rational_bezier, CurveKind::rational};
+constexpr CurveKind kRationalKinds[] = {CurveKind::rational_bezier, CurveKind::rational};
 
 // Random curves of degrees first..last, one per kind and kind of control polygon: f(n, plan).
 template <class F>
 void for_each_random_plan(std::mt19937_64& rng, int first, int last, F&& f) {
   for (int n = first; n <= last; ++n)
-    for (CurveKind kind : kKinds)
+    for (CurveKind kind : kRationalKinds)
       for (auto polygon : {datasets::ControlPolygon::unit_square, datasets::ControlPolygon::perturbed_arc})
         f(n, detail::plan_data(make_plan(datasets::random_curve(kind, n, rng, polygon))));
 }
@@ -173,7 +173,7 @@ TEST(Isolation, NoWalkEndsWithinTheToleranceAwayFromACertifiedParameter) {
   for (int n : {3, 4, 5, 6, 8, 10, 12, 15, 20})
     for (int c = 0; c < 6; ++c) {
       const detail::PlanData plan =
-          detail::plan_data(make_plan(datasets::random_curve(kKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square)));
+          detail::plan_data(make_plan(datasets::random_curve(kRationalKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square)));
       for (double relative_tolerance : {1e-6, 1e-3, 3e-2}) {
         const double tolerance = relative_tolerance * plan.diagonal / plan.scale;
         for (int k = 0; k < 12; ++k) {
@@ -210,7 +210,7 @@ TEST(Isolation, TheBatchedFirstTestCertifiesOnlyWhatIsolatedCertifies) {
   int batched = 0, by_boxes = 0, refused = 0, arc_points = 0, arc_batched = 0;
   for (int n : {2, 3, 5, 8, 10, 15, 20})
     for (auto polygon : {datasets::ControlPolygon::unit_square, datasets::ControlPolygon::perturbed_arc})
-      for (CurveKind kind : kKinds) {
+      for (CurveKind kind : kRationalKinds) {
         const detail::PlanData plan = detail::plan_data(make_plan(datasets::random_curve(kind, n, rng, polygon)));
         for (double relative_tolerance : {1e-6, 1e-2}) {
           const double tolerance = relative_tolerance * plan.diagonal / plan.scale;
@@ -265,7 +265,7 @@ TEST(Isolation, NoWalkEndsWithinTheToleranceAwayFromACertifiedParameterOffTheCur
   for (int n : {2, 3, 4, 5, 6, 8, 10, 12, 15, 20})
     for (int c = 0; c < 6; ++c) {
       const detail::PlanData plan =
-          detail::plan_data(make_plan(datasets::random_curve(kKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square)));
+          detail::plan_data(make_plan(datasets::random_curve(kRationalKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square)));
       for (double relative_tolerance : {1e-6, 1e-3, 3e-2}) {
         const double tolerance = relative_tolerance * plan.diagonal / plan.scale;
         for (int k = 0; k < 12; ++k) {
@@ -317,7 +317,7 @@ TEST(Isolation, NearestOnSegmentIsTheNearestPointOfTheSegment) {
   for (int n : {2, 3, 4, 5, 6, 8, 10, 12, 15, 20})
     for (int c = 0; c < 6; ++c) {
       const detail::PlanData plan =
-          detail::plan_data(make_plan(datasets::random_curve(kKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square)));
+          detail::plan_data(make_plan(datasets::random_curve(kRationalKinds[c % 2], n, rng, datasets::ControlPolygon::unit_square)));
       constexpr int kGrid = 4000;
       std::vector<std::array<double, 2>> grid(kGrid + 1);
       for (int g = 0; g <= kGrid; ++g) grid[g] = plan.normalized_point(g / double(kGrid));

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "support/bits.hpp"
 #include "bezinv/datasets/curve_sampling.hpp"
 #include "bezinv/datasets/random_curve.hpp"
 #include "bezinv/datasets/random_numbers.hpp"
@@ -28,7 +29,7 @@
 namespace bezinv {
 namespace {
 
-constexpr std::array<CurveKind, 3> kKinds{CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational};
+using test_support::kAllKinds;
 
 // Normalized coordinates back to the input's (the inverse of PlanData::normalize).
 Point to_input(const detail::PlanData& plan, double u, double v) {
@@ -112,7 +113,7 @@ TEST(OffCurvePath, AnswersAsTheSvdPathAroundCurvesOfEveryKindAndDegree) {
   Tally tally;
   // Perturbed arcs and the unit square's loopier curves, in turn by degree (both at every degree
   // would double the time, mostly the SVD path's, for little more).
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int n = 1; n <= kMaxDegree; ++n) {
       const auto polygon = n % 2 ? datasets::ControlPolygon::perturbed_arc : datasets::ControlPolygon::unit_square;
       std::mt19937_64 rng(6151 + 97 * n + 13 * static_cast<int>(kind) + static_cast<int>(polygon));
@@ -133,7 +134,7 @@ TEST(OffCurvePath, AnswersAsTheSvdPathAroundCurvesOfEveryKindAndDegree) {
 // a double point.
 TEST(OffCurvePath, AnswersAsTheSvdPathAroundSelfIntersections) {
   Tally tally;
-  for (CurveKind kind : kKinds)
+  for (CurveKind kind : kAllKinds)
     for (int n = 3; n <= 16; ++n) {
       std::mt19937_64 rng(3301 + 7 * n + static_cast<int>(kind));
       const double t1 = datasets::uniform(rng, 0.1, 0.45), t2 = datasets::uniform(rng, 0.55, 0.9);

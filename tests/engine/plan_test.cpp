@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "support/bits.hpp"
 #include "bezinv/datasets/random_curve.hpp"
 #include "plan_data.hpp"
 #include "bezinv/plan.hpp"
@@ -18,9 +19,7 @@
 namespace bezinv {
 namespace {
 
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
+using test_support::same_bits;
 
 std::vector<Curve> random_curves(std::size_t count, std::mt19937_64& rng) {
   std::vector<Curve> curves;

@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "support/bits.hpp"
 #include "bezinv/datasets/curve_sampling.hpp"
 #include "bezinv/datasets/on_curve_points.hpp"
 #include "bezinv/datasets/random_curve.hpp"
@@ -17,7 +18,7 @@
 namespace bezinv {
 namespace {
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test_support::same_bits;
 
 TEST(Profile, SameAnswersAsInvertWithTheTimeOfEachStage) {
   std::mt19937_64 rng(41);

@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "support/bits.hpp"
 #include "bezinv/kernels/batch.hpp"
 #include "plan_data.hpp"
 #include "bezinv/plan.hpp"
@@ -21,7 +22,7 @@
 namespace bezinv {
 namespace {
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test_support::same_bits;
 
 // Horner's rule (curve_jet_horner, for the stationarity test) against de Casteljau (curve_jet):
 // the same jet to the rounding of either, at every degree, over the whole segment.

@@ -16,14 +16,18 @@
 #include <string_view>
 #include <vector>
 
+#include "support/bits.hpp"
 #include "bezinv/io.hpp"
 #include "bezinv/plan.hpp"
 #include "support/expect_input_error.hpp"
+#include "support/npy_bytes.hpp"
 #include "support/scratch_directory.hpp"
 #include "support/split.hpp"
 
 namespace bezinv {
 namespace {
+
+using test_support::same_bits;
 
 namespace fs = std::filesystem;
 
@@ -35,36 +39,11 @@ constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 
 using test_support::expect_input_error;
 
-// A .npy file from its parts: magic, version, little-endian header length, the dict padded with
-// spaces to a multiple of 64 bytes and ended by '\n', then the data (numpy format spec 1.0/2.0).
-std::string npy_file(const std::string& dict, std::string_view data, int major = 1) {
-  const std::size_t length_bytes = major == 1 ? 2 : 4;
-  std::string padded = dict;
-  while ((6 + 2 + length_bytes + padded.size() + 1) % 64 != 0) padded += ' ';
-  padded += '\n';
-  std::string bytes = "\x93NUMPY";
-  bytes += static_cast<char>(major);
-  bytes += '\0';
-  for (std::size_t i = 0; i < length_bytes; ++i) bytes += static_cast<char>((padded.size() >> (8 * i)) & 0xff);
-  return bytes + padded + std::string(data);
-}
+using test_support::le_bytes;
+using test_support::npy_bytes;
+using test_support::npy_dict;
 
-std::string dict(const std::string& descr, const std::string& shape, const char* fortran = "False") {
-  return "{'descr': " + descr + ", 'fortran_order': " + fortran + ", 'shape': " + shape + ", }";
-}
-
-// Little-endian bytes of numbers, as the array data of a .npy holds them.
-template <class T>
-std::string le_bytes(std::initializer_list<T> values) {
-  std::string bytes;
-  for (T value : values) {
-    const auto bits = std::bit_cast<std::conditional_t<sizeof(T) == 8, std::uint64_t, std::uint32_t>>(value);
-    for (std::size_t i = 0; i < sizeof(T); ++i) bytes += static_cast<char>((bits >> (8 * i)) & 0xff);
-  }
-  return bytes;
-}
-
-std::vector<Curve> three_curves() {
+std::vector<Curve> curves_a_b_7() {
   std::vector<Curve> curves(3);
   curves[0].id = "a";
   curves[1].id = "b";
@@ -78,15 +57,14 @@ std::vector<PointRow> read_all(PointReader& reader, std::size_t chunk = 2) {
   return rows;
 }
 
-bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
 class NpyPoints : public ::testing::Test {
  protected:
   ScratchDirectory scratch{"bezinv-npy-test-"};
-  const std::vector<Curve> curves = three_curves();
+  const std::vector<Curve> curves = curves_a_b_7();
   // Five points, one of them with a NaN x and one with an infinite y.
   const std::string points =
-      scratch.write("points.npy", npy_file(dict("'<f8'", "(5, 2)"), le_bytes<double>({0.1, -2.5e-3, 1e-300, 123456789.125,
+      scratch.write("points.npy", npy_bytes(npy_dict("'<f8'", "(5, 2)"), le_bytes<double>({0.1, -2.5e-3, 1e-300, 123456789.125,
                                                                                       kNan, 1, 3, INFINITY, -0.0, 5e-324})));
 
   void expect_refused(const std::string& name, const std::string& bytes, const CurveSelection& selection,
@@ -118,19 +96,19 @@ TEST_F(NpyPoints, ReadsExactNumbersForTheCurveGivenByIdOrIndex) {
 }
 
 TEST_F(NpyPoints, ReadsVersion2HeadersAndEmptyArrays) {
-  const std::string v2 = scratch.write("v2.npy", npy_file(dict("'<f8'", "(1, 2)"), le_bytes<double>({1.5, 2.5}), 2));
+  const std::string v2 = scratch.write("v2.npy", npy_bytes(npy_dict("'<f8'", "(1, 2)"), le_bytes<double>({1.5, 2.5}), 2));
   const std::vector<PointRow> rows = read_all(*open_points(v2, curves, {"a", ""}));
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].point.x, 1.5);
   EXPECT_EQ(rows[0].point.y, 2.5);
-  const std::string empty = scratch.write("empty.npy", npy_file(dict("'<f8'", "(0, 2)"), ""));
+  const std::string empty = scratch.write("empty.npy", npy_bytes(npy_dict("'<f8'", "(0, 2)"), ""));
   EXPECT_TRUE(read_all(*open_points(empty, curves, {"a", ""})).empty());
 }
 
 TEST_F(NpyPoints, CurveIndexFileInt32AndInt64) {
-  const std::string i32 = scratch.write("i32.npy", npy_file(dict("'<i4'", "(5,)"), le_bytes<std::int32_t>({2, 0, 1, -1, 3})));
+  const std::string i32 = scratch.write("i32.npy", npy_bytes(npy_dict("'<i4'", "(5,)"), le_bytes<std::int32_t>({2, 0, 1, -1, 3})));
   const std::string i64 = scratch.write(
-      "i64.npy", npy_file(dict("'<i8'", "(5,)"), le_bytes<std::int64_t>({2, 0, 1, std::int64_t{1} << 40, -(std::int64_t{1} << 40)})));
+      "i64.npy", npy_bytes(npy_dict("'<i8'", "(5,)"), le_bytes<std::int64_t>({2, 0, 1, std::int64_t{1} << 40, -(std::int64_t{1} << 40)})));
   const std::vector<PointRow> a = read_all(*open_points(points, curves, {"", i32}));
   ASSERT_EQ(a.size(), 5u);
   EXPECT_EQ(a[0].curve, 2);
@@ -150,25 +128,25 @@ TEST_F(NpyPoints, CurveIndexFileInt32AndInt64) {
 TEST_F(NpyPoints, HeaderErrorsNameTheFileAndTheField) {
   const std::string data = le_bytes<double>({1, 2, 3, 4, 5, 6});
   const CurveSelection a{"a", ""};
-  expect_refused("f4.npy", npy_file(dict("'<f4'", "(3, 2)"), data), a, {"f4.npy: header: dtype '<f4' is not '<f8'"});
-  expect_refused("be.npy", npy_file(dict("'>f8'", "(3, 2)"), data), a, {"be.npy: header: dtype '>f8' is not '<f8'"});
-  expect_refused("rec.npy", npy_file(dict("[('x', '<f8'), ('y', '<f8')]", "(3,)"), data), a,
+  expect_refused("f4.npy", npy_bytes(npy_dict("'<f4'", "(3, 2)"), data), a, {"f4.npy: header: dtype '<f4' is not '<f8'"});
+  expect_refused("be.npy", npy_bytes(npy_dict("'>f8'", "(3, 2)"), data), a, {"be.npy: header: dtype '>f8' is not '<f8'"});
+  expect_refused("rec.npy", npy_bytes(npy_dict("[('x', '<f8'), ('y', '<f8')]", "(3,)"), data), a,
                  {"rec.npy: header: dtype [('x', '<f8'), ('y', '<f8')] is not '<f8'"});
-  expect_refused("fortran.npy", npy_file(dict("'<f8'", "(3, 2)", "True"), data), a,
+  expect_refused("fortran.npy", npy_bytes(npy_dict("'<f8'", "(3, 2)", "True"), data), a,
                  {"fortran.npy: header: fortran_order is True"});
-  expect_refused("flat.npy", npy_file(dict("'<f8'", "(6,)"), data), a, {"flat.npy: header: shape (6,) is not (N, 2)"});
-  expect_refused("wide.npy", npy_file(dict("'<f8'", "(2, 3)"), data), a, {"wide.npy: header: shape (2, 3) is not (N, 2)"});
-  expect_refused("short.npy", npy_file(dict("'<f8'", "(4, 2)"), data), a,
+  expect_refused("flat.npy", npy_bytes(npy_dict("'<f8'", "(6,)"), data), a, {"flat.npy: header: shape (6,) is not (N, 2)"});
+  expect_refused("wide.npy", npy_bytes(npy_dict("'<f8'", "(2, 3)"), data), a, {"wide.npy: header: shape (2, 3) is not (N, 2)"});
+  expect_refused("short.npy", npy_bytes(npy_dict("'<f8'", "(4, 2)"), data), a,
                  {"short.npy: data: truncated", "(4, 2)", "needs 64 bytes", "the file has 48"});
-  expect_refused("long.npy", npy_file(dict("'<f8'", "(2, 2)"), data), a, {"long.npy: data: 16 bytes after the end"});
-  expect_refused("nodescr.npy", npy_file("{'fortran_order': False, 'shape': (3, 2), }", data), a,
+  expect_refused("long.npy", npy_bytes(npy_dict("'<f8'", "(2, 2)"), data), a, {"long.npy: data: 16 bytes after the end"});
+  expect_refused("nodescr.npy", npy_bytes("{'fortran_order': False, 'shape': (3, 2), }", data), a,
                  {"nodescr.npy: header: missing 'descr'"});
-  expect_refused("garbled.npy", npy_file("{'descr': '<f8', 'fortran_order': Maybe, 'shape': (3, 2), }", data), a,
+  expect_refused("garbled.npy", npy_bytes("{'descr': '<f8', 'fortran_order': Maybe, 'shape': (3, 2), }", data), a,
                  {"garbled.npy: header: malformed dict", "True or False"});
   expect_refused("text.npy", "x,y\n1,2\n", a, {"text.npy: not a .npy file"});
-  expect_refused("v9.npy", npy_file(dict("'<f8'", "(3, 2)"), data).replace(6, 1, "\x09"), a,
+  expect_refused("v9.npy", npy_bytes(npy_dict("'<f8'", "(3, 2)"), data).replace(6, 1, "\x09"), a,
                  {"v9.npy: header: unsupported format version 9.0"});
-  expect_refused("cut.npy", npy_file(dict("'<f8'", "(3, 2)"), data).substr(0, 40), a, {"cut.npy: header: truncated"});
+  expect_refused("cut.npy", npy_bytes(npy_dict("'<f8'", "(3, 2)"), data).substr(0, 40), a, {"cut.npy: header: truncated"});
   expect_input_error([&] { open_points(scratch.path("absent.npy"), curves, a); }, {"absent.npy: cannot read"});
 }
 
@@ -176,17 +154,17 @@ TEST_F(NpyPoints, CurveSelectionErrors) {
   expect_input_error([&] { open_points(points, curves, {}); }, {"points.npy", "--curve ID or --curve-index"});
   expect_input_error([&] { open_points(points, curves, {"zz", ""}); }, {"points.npy", "--curve 'zz'"});
   expect_input_error([&] { open_points(points, curves, {"3", ""}); }, {"points.npy", "--curve '3'"});
-  const std::string index = scratch.write("i.npy", npy_file(dict("'<i4'", "(5,)"), le_bytes<std::int32_t>({0, 0, 0, 0, 0})));
+  const std::string index = scratch.write("i.npy", npy_bytes(npy_dict("'<i4'", "(5,)"), le_bytes<std::int32_t>({0, 0, 0, 0, 0})));
   expect_input_error([&] { open_points(points, curves, {"a", index}); }, {"not both"});
   // The index array: wrong dtype, wrong shape, wrong length (whole-file errors naming it).
-  const CurveSelection wrong_dtype{"", scratch.write("u8.npy", npy_file(dict("'<u8'", "(5,)"), std::string(40, '\0')))};
+  const CurveSelection wrong_dtype{"", scratch.write("u8.npy", npy_bytes(npy_dict("'<u8'", "(5,)"), std::string(40, '\0')))};
   expect_input_error([&] { open_points(points, curves, wrong_dtype); }, {"u8.npy: header: dtype '<u8' is not '<i4' or '<i8'"});
-  const CurveSelection wrong_shape{"", scratch.write("2d.npy", npy_file(dict("'<i4'", "(5, 1)"), std::string(20, '\0')))};
+  const CurveSelection wrong_shape{"", scratch.write("2d.npy", npy_bytes(npy_dict("'<i4'", "(5, 1)"), std::string(20, '\0')))};
   expect_input_error([&] { open_points(points, curves, wrong_shape); }, {"2d.npy: header: shape (5, 1) is not (N,)"});
-  const CurveSelection wrong_length{"", scratch.write("4.npy", npy_file(dict("'<i4'", "(4,)"), std::string(16, '\0')))};
+  const CurveSelection wrong_length{"", scratch.write("4.npy", npy_bytes(npy_dict("'<i4'", "(4,)"), std::string(16, '\0')))};
   expect_input_error([&] { open_points(points, curves, wrong_length); },
                      {"4.npy: header: shape (4,) does not match the 5 points of", "points.npy"});
-  const CurveSelection cut{"", scratch.write("cut.npy", npy_file(dict("'<i8'", "(5,)"), std::string(16, '\0')))};
+  const CurveSelection cut{"", scratch.write("cut.npy", npy_bytes(npy_dict("'<i8'", "(5,)"), std::string(16, '\0')))};
   expect_input_error([&] { open_points(points, curves, cut); }, {"cut.npy: data: truncated"});
   // A CSV names its curves itself.
   const std::string csv = scratch.write("points.csv", "curve,x,y\na,1,2\n");
@@ -335,7 +313,7 @@ TEST_F(Stream, ChunkBoundariesKeepEveryRowInOrder) {
 TEST_F(Stream, NpyChunksMatchTheWholeRun) {
   std::string data;
   for (int i = 0; i < 10; ++i) data += le_bytes<double>({0.2 * i, 0.1 * i});
-  const std::string points = scratch.write("points.npy", npy_file(dict("'<f8'", "(10, 2)"), data));
+  const std::string points = scratch.write("points.npy", npy_bytes(npy_dict("'<f8'", "(10, 2)"), data));
   const std::string whole = run(points, scratch.path("whole.npy"), 64, {"line", ""});
   EXPECT_EQ(run(points, scratch.path("chunked.npy"), 3, {"line", ""}), whole);
   const ParsedNpy npy = parse_npy(whole);

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "support/bits.hpp"
 #include "bezinv/io.hpp"
 #include "io/read_points_csv.hpp"
 #include "support/expect_input_error.hpp"
@@ -24,6 +25,8 @@
 
 namespace bezinv {
 namespace {
+
+using test_support::same_bits;
 
 namespace fs = std::filesystem;
 
@@ -372,7 +375,6 @@ TEST_F(IoPointsCsv, RefusesRowsWithTheWrongNumberOfFields) {
 // ---------------------------------------------------------------------------------------------
 // OUT.csv
 
-bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
 class IoResultsCsv : public ::testing::Test {
  protected:

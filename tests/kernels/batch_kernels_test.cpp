@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/bits.hpp"
 #include "bezinv/kernels/batch.hpp"
 #include "bezinv/kernels/detail/batch_selection.hpp"
 #include "support/measure.hpp"
@@ -30,7 +31,7 @@ using Dense = Eigen::MatrixXd;
 constexpr std::size_t kCounts[] = {1, 2, 3, 4, 5, 7, 8, 9, 15, 16, 17, 33};
 // Both sides are Jacobi methods with errors ~ n eps sigma_1; measured worst ~1.1e-14 at n = 22.
 constexpr double kSigmaTolerance = 2e-14;
-const double kNaN = std::numeric_limits<double>::quiet_NaN();
+using test_support::kNaN;
 
 Dense random_symmetric(int n, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);

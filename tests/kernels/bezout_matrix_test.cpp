@@ -15,11 +15,12 @@
 #include "bezinv/kernels/batch.hpp"
 #include "support/exact.hpp"
 #include "support/sanitizers.hpp"
+#include "support/measure.hpp"
 
 namespace bezinv::kernels {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using test_support::kEps;
 constexpr double kUnset = -7.0;  // what the upper triangle and lanes past the last vector keep
 
 // bilinear: separate denominators (Bxy given, some of its entries 0); else one denominator (Bxy

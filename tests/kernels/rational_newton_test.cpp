@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "support/bits.hpp"
 #include "bezinv/kernels/batch.hpp"
 #include "support/exact.hpp"
 #include "support/measure.hpp"
@@ -20,7 +21,7 @@ namespace {
 
 using test_support::sci;
 
-const double kNaN = std::numeric_limits<double>::quiet_NaN();
+using test_support::kNaN;
 // The engine's settings (engine/include/bezinv/tolerances.hpp).
 constexpr NewtonSettings kSettings{60, 0.125, 1e-6, 40, 1e-12};
 

@@ -36,6 +36,7 @@
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
 #include "support/exact.hpp"
+#include "support/measure.hpp"
 
 // A test that fails on the engine as it is: skipped so the tree stays green, with what fails;
 // BEZINV_RUN_KNOWN_FAILURES=1 in the environment runs it anyway.
@@ -43,9 +44,6 @@
   if (!std::getenv("BEZINV_RUN_KNOWN_FAILURES")) GTEST_SKIP() << "known: " << text
 
 namespace bezinv::test_support {
-
-inline constexpr double kUnit = 0x1p-53;  // unit round-off u
-inline constexpr double kEps = 0x1p-52;   // machine epsilon, 2u
 
 // x as a long double (to 2^-63 relative), for values beyond the doubles' range.
 inline long double to_long_double(const mpq_class& x) {

@@ -1,6 +1,8 @@
 #pragma once
-// Splitting text the code under test wrote (OUT.csv, stderr) into lines and fields.
+// Splitting text the code under test wrote (OUT.csv, stderr) into lines and fields, and writing
+// numbers into the text it reads.
 #include <cstddef>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,13 @@ inline std::vector<std::string> split(const std::string& text, char separator) {
     if (end == std::string::npos) return parts;
     start = end + 1;
   }
+}
+
+// v with 17 significant digits: read back, the same double.
+inline std::string csv_number(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
 }
 
 }  // namespace bezinv::test_support
