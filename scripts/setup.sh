@@ -5,7 +5,8 @@ set -euo pipefail
 packages=(g++ cmake make ninja-build git pkg-config
           libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev
           libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev libmpfr-dev
-          libhwy-dev python3)
+          libhwy-dev python3
+          chromium-headless-shell)  # the stress report rendered in a real browser (tests/cli/cli_stress_test.cpp)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "bezinv/datasets/cusp.hpp"
 #include "bezinv/datasets/degree_elevation.hpp"
 #include "bezinv/datasets/high_precision_nearest.hpp"
 #include "bezinv/datasets/improper.hpp"
@@ -118,6 +119,48 @@ StressRow crossing_row(const Curve& curve, const KnownPoint& k, double diagonal,
   return row;
 }
 
+// The row of a point on the curve near its cusp at tc, at t = tc + s: its own branch holds it, and
+// the other branch (parameters on the other side of tc) decides. Beyond twice the tolerance, or
+// within it while the curve stays within it in between (by the tip): one branch, ok. Within half
+// the tolerance while the curve goes farther than twice it in between (to the tip and back): the
+// point is where two branches pass (README's double_point), t and t2 the two parameters. Between
+// those margins, both are right.
+StressRow cusp_row(const Curve& curve, const KnownPoint& k, double tc, double diagonal, double tolerance) {
+  StressRow row = truth(curve, k, /*segment_only=*/false, diagonal);
+  row.expected = Status::ok;
+  row.acceptable = bit(Status::ok);
+  if (std::isnan(row.t_true)) return row;
+  // The other branch's nearest point: the least of 400 samples over 5 |s| beyond the tip, then
+  // high-precision Newton from it.
+  const RealPoint p{k.point.x, k.point.y};
+  const Real s = static_cast<Real>(k.t) - tc;
+  auto distance_at = [&](Real t) { return distance(reference_point(curve, t), p); };
+  Real best_t = tc, best = distance_at(tc);
+  for (int i = 1; i <= 400; ++i) {
+    const Real t = tc - s * 5 * i / 400;
+    if (const Real d = distance_at(t); d < best) { best = d; best_t = t; }
+  }
+  const HighPrecisionNearest other = high_precision_nearest(curve, k.point, static_cast<double>(best_t), false);
+  if (!other.converged || !((other.t - tc) * (k.t - tc) < 0) || other.distance >= kAmbiguousAbove * tolerance) return row;
+  // How far the curve gets from the point between the two parameters (it passes the tip).
+  Real farthest = 0;
+  for (int i = 1; i < 256; ++i)
+    farthest = std::max(farthest, distance_at(other.t + (static_cast<Real>(row.t_true) - other.t) * i / 256));
+  if (farthest <= kAmbiguousBelow * tolerance) return row;  // one branch: the curve never leaves
+  if (other.distance <= kAmbiguousBelow * tolerance && farthest >= kAmbiguousAbove * tolerance) {
+    const bool own_first = row.t_true < other.t;
+    row.expected = Status::double_point;
+    row.acceptable = bit(Status::double_point);
+    row.t2_true = own_first ? other.t : row.t_true;
+    row.t_true = own_first ? row.t_true : other.t;
+    row.distance = own_first ? row.distance : other.distance;  // the residual is at the first parameter
+    row.bound = std::max(row.bound, stress_bound(curve.degree(), k.point.x, k.point.y, diagonal, k.scale, other.speed));
+    return row;
+  }
+  row.acceptable |= bit(Status::double_point);
+  return row;
+}
+
 // The engine's tolerance (docs/accuracy-model.md): REL x diagonal, but at least 4 ulps of the
 // control points' largest coordinate (a curve 1e12 from the origin has ulps of 1.2e-4).
 double effective_tolerance(const Curve& curve, double diagonal, double relative_tolerance) {
@@ -154,6 +197,16 @@ std::optional<StressCurve> stress_curve(Family family, CurveKind kind, int degre
         c.curve = with_self_intersection(kind, degree, c.t1, c.t2, rng, polygon);
       } catch (const std::runtime_error&) {
         return std::nullopt;  // no curve of this degree crossed itself as asked
+      }
+      return c;
+    }
+    case Family::cusps: {
+      if (degree < 3) return std::nullopt;
+      c.t1 = uniform(rng, 0.3, 0.7);
+      try {
+        c.curve = with_cusp(kind, degree, c.t1, rng, polygon);
+      } catch (const std::runtime_error&) {
+        return std::nullopt;  // no curve of this degree had a verified cusp
       }
       return c;
     }
@@ -209,6 +262,7 @@ const char* to_string(Family family) {
     case Family::noisy: return "noisy";
     case Family::far: return "far";
     case Family::crossings: return "crossings";
+    case Family::cusps: return "cusps";
     case Family::translated: return "translated";
     case Family::elevated: return "elevated";
     case Family::improper: return "improper";
@@ -239,6 +293,12 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
       rows.push_back(crossing_row(curve, k, diagonal, tolerance));
     return rows;
   }
+  if (family == Family::cusps) {
+    std::vector<StressRow> rows;
+    for (const KnownPoint& k : near_cusp_points(sampling, stress_curve.t1, count, rng))
+      rows.push_back(cusp_row(curve, k, stress_curve.t1, diagonal, tolerance));
+    return rows;
+  }
   std::vector<KnownPoint> known;
   switch (family) {
     case Family::on_curve:
@@ -247,6 +307,7 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
     case Family::weights:
     case Family::papers: known = segment_points(sampling, count, rng); break;
     case Family::improper: known = improper_points(sampling, count, rng); break;
+    case Family::cusps: break;
     case Family::crossings: break;
     case Family::near_ends: known = near_end_points(sampling, count, rng); break;
     case Family::extension: known = extension_points(sampling, count, rng); break;

@@ -316,7 +316,7 @@ int main(int argc, char** argv) {
   profile->add_flag("--json", profile_options.json, "One JSON object on stdout");
 
   bezinv::cli::StressOptions stress_options;
-  std::string stress_families = "on_curve,near_ends,extension,noisy,far,crossings,translated,elevated,improper,weights,papers",
+  std::string stress_families = bezinv::cli::all_families(),
               stress_kinds = "bezier,rational_bezier,rational", stress_degrees = "1-24", stress_paths = "default";
   long long stress_threads = 0;
   CLI::App* stress = app.add_subcommand(

@@ -138,6 +138,15 @@ std::vector<Family> parse_families(const std::string& list) {
   return parse_list<Family>(list, "--families", "family", datasets::family_from_string);
 }
 
+std::string all_families() {
+  std::string list;
+  for (Family family : datasets::kFamilies) {
+    if (!list.empty()) list += ',';
+    list += datasets::to_string(family);
+  }
+  return list;
+}
+
 std::vector<CurveKind> parse_kinds(const std::string& list) {
   return parse_list<CurveKind>(list, "--kinds", "kind", [](const std::string& item) {
     return named(item, {CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational});

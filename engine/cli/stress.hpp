@@ -31,6 +31,8 @@ struct StressOptions {
 // Parses "a,b,c" lists and "lo-hi" degree ranges for the command line; throws std::invalid_argument
 // naming the bad item.
 std::vector<datasets::Family> parse_families(const std::string& list);
+// Every family, comma-separated: the default of --families.
+std::string all_families();
 std::vector<CurveKind> parse_kinds(const std::string& list);
 std::vector<StressPath> parse_paths(const std::string& list);
 std::pair<int, int> parse_degrees(const std::string& range);

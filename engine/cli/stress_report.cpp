@@ -123,6 +123,8 @@ std::string scatter_svg(const std::vector<std::array<double, 2>>& points) {
 void StressReport::Errors::add(double t_true, double error, double ratio, std::mt19937_64& rng) {
   ++compared;
   worst = std::max(worst, ratio);
+  beyond += ratio > 1;
+  far_beyond += ratio > 10;
   if (ratio == 0) {
     ++exact;
   } else {
@@ -235,8 +237,27 @@ void StressReport::write(const std::filesystem::path& directory, const nlohmann:
   }
   html << "</table>\n";
 
+  // In a sentence, where the family's answers stand against the accuracy model and the contract.
+  auto verdict = [](const FamilyData& f) {
+    std::ostringstream out;
+    out << f.rows << " rows, ";
+    if (f.wrong == 0) out << "every status right. ";
+    else out << "<b>" << f.wrong << " wrong statuses</b> (below). ";
+    if (f.errors.compared == 0) {
+      out << "No parameter compared.";
+    } else if (f.errors.beyond == 0) {
+      out << "Every one of the " << f.errors.compared << " parameters compared is within the accuracy model's bound (worst "
+          << number(f.errors.worst) << " of it): as accurate as rounding the input allows.";
+    } else {
+      out << f.errors.beyond << " of the " << f.errors.compared << " parameters compared exceed the bound, "
+          << f.errors.far_beyond << " of them by more than 10 times (worst " << number(f.errors.worst)
+          << "): errors the rounding of the input alone does not explain (the worst rows below).";
+    }
+    return out.str();
+  };
   for (const auto& [family, f] : families_) {
-    html << "<h2 id=\"" << datasets::to_string(family) << "\">" << datasets::to_string(family) << "</h2>\n<p>bezinv</p>\n<div>\n"
+    html << "<h2 id=\"" << datasets::to_string(family) << "\">" << datasets::to_string(family) << "</h2>\n<p>"
+         << verdict(f) << "</p>\n<p>bezinv</p>\n<div>\n"
          << histogram_svg(f.errors.histogram, f.errors.exact) << scatter_svg(f.errors.scatter) << "</div>\n";
     if (const auto it = baselines_.find(family); it != baselines_.end())
       for (const auto& [library, b] : it->second)

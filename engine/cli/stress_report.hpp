@@ -57,6 +57,7 @@ class StressReport {
   struct Errors {
     std::array<std::size_t, kBins> histogram{};
     std::size_t exact = 0, compared = 0;
+    std::size_t beyond = 0, far_beyond = 0;      // ratios above 1 and above 10
     double worst = 0;                            // the largest ratio
     std::vector<std::array<double, 2>> scatter;  // (t_true, |t - t_true|), a uniform sample
     void add(double t_true, double error, double ratio, std::mt19937_64& rng);

@@ -123,6 +123,38 @@ print(len(plots), min(marks))
   EXPECT_GE(reproduced, 3);
 }
 
+// The page in a real browser (Debian's headless chromium, which scripts/setup.sh installs): it
+// loads, every plot in the rendered DOM has marks, and the screenshot is not blank: ink on a
+// fiftieth of it or more (text, bars, tables), in more than a few colours (the plots' marks, bars and text).
+TEST(CliStress, ReportRendersInAHeadlessBrowser) {
+  std::string browser;
+  for (const char* candidate : {"/usr/bin/chromium-headless-shell", "/usr/lib/chromium/chromium-headless-shell",
+                                "/usr/bin/chromium"})
+    if (std::filesystem::exists(candidate)) {
+      browser = candidate;
+      break;
+    }
+  if (browser.empty()) GTEST_SKIP() << "no headless chromium here (scripts/setup.sh installs chromium-headless-shell)";
+  ScratchDirectory scratch{"bezinv-stress-browser-"};
+  const std::string dir = scratch.path("report");
+  const auto run = run_bezinv(scratch, "stress --families on_curve,crossings --degrees 3 --points 300 --curves 2 --report " +
+                                           bezinv::test_support::quoted(dir));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string out = scratch.path("render.txt");
+  const std::string command = "/usr/bin/python3 " + bezinv::test_support::quoted(BEZINV_TEST_SOURCE_DIR "/support/render_report.py") +
+                              " " + bezinv::test_support::quoted(browser) + " " + bezinv::test_support::quoted(dir + "/index.html") +
+                              " " + bezinv::test_support::quoted(scratch.path("")) + " > " + bezinv::test_support::quoted(out) + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << bezinv::test_support::read_file(out);
+  int plots = 0, least_marks = 0, colours = 0;
+  double inked = 0;
+  ASSERT_EQ(std::sscanf(bezinv::test_support::read_file(out).c_str(), "%d %d %lf %d", &plots, &least_marks, &inked, &colours), 4)
+      << bezinv::test_support::read_file(out);
+  EXPECT_EQ(plots, 4);  // a histogram and a scatter plot per family
+  EXPECT_GT(least_marks, 0);
+  EXPECT_GT(inked, 0.02);
+  EXPECT_GT(colours, 4);
+}
+
 // A report directory that cannot be made (a file is in the way): exit 2, the path named.
 TEST(CliStress, AReportDirectoryThatCannotBeWrittenIsNamed) {
   ScratchDirectory scratch{"bezinv-stress-test-"};

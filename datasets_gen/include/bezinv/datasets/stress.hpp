@@ -20,6 +20,11 @@
 //              crossing and at 1e-9..1e-4 diagonals from it: both branches within the tolerance
 //              (double_point, t and t2), one (ok), none (off_curve), and between, more than one
 //              status right. Truth: each branch's nearest parameter, high precision.
+//   cusps      curves made to have a cusp at tc (P'(tc) = 0, degree >= 3; datasets/cusp.hpp), points
+//              on them at tc +- s, s in 1e-4..1e-2: where the two branches meet, |P'| ~ s, and
+//              for the smaller s the other branch is within the tolerance without the curve
+//              leaving it between (one branch: ok, never double_point). Truth as on_curve (the
+//              other branch is never within rounding of the point); status ok.
 //   translated on_curve's points on the curve moved 1e6..1e12 away from the origin (map
 //              coordinates): the digits the plan's centring must keep. Status ok.
 //   elevated   on_curve's points on a curve of degree n - 2 written at degree n (in double, so its
@@ -31,7 +36,7 @@
 //   papers     the papers' curves where kind and degree match (Marco & Martinez's Examples 1, 2
 //              and 4, and the demo's cubic), on_curve's points. Status ok.
 // Every generated point is isolated from the curve's other branches (datasets/known_point.hpp).
-// A family that does not apply to a kind or degree (crossings below 3, improper at odd degrees,
+// A family that does not apply to a kind or degree (crossings and cusps below 3, improper at odd degrees,
 // weights for bezier, papers but for their own) makes no curve there.
 #include <array>
 #include <limits>
@@ -47,10 +52,10 @@
 
 namespace bezinv::datasets {
 
-enum class Family { on_curve, near_ends, extension, noisy, far, crossings, translated, elevated, improper, weights, papers };
-inline constexpr std::array kFamilies = {Family::on_curve,  Family::near_ends,  Family::extension, Family::noisy,
-                                         Family::far,       Family::crossings,  Family::translated, Family::elevated,
-                                         Family::improper,  Family::weights,    Family::papers};
+enum class Family { on_curve, near_ends, extension, noisy, far, crossings, cusps, translated, elevated, improper, weights, papers };
+inline constexpr std::array kFamilies = {Family::on_curve, Family::near_ends,  Family::extension, Family::noisy,
+                                         Family::far,      Family::crossings,  Family::cusps,     Family::translated,
+                                         Family::elevated, Family::improper,   Family::weights,   Family::papers};
 const char* to_string(Family family);
 std::optional<Family> family_from_string(std::string_view name);
 
@@ -73,7 +78,8 @@ struct StressRow {
 // absolute terms, which grows as (|1 - t| + |t|)^n on the extension).
 double stress_bound(int degree, double x, double y, double diagonal, double scale, double speed);
 
-// A curve of the family, or none where the family does not apply. t1, t2: a crossing's parameters.
+// A curve of the family, or none where the family does not apply. t1, t2: a crossing's parameters;
+// t1: a cusp's.
 struct StressCurve {
   Curve curve;
   double t1 = std::numeric_limits<double>::quiet_NaN(), t2 = std::numeric_limits<double>::quiet_NaN();
