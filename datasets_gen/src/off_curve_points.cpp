@@ -83,8 +83,8 @@ std::vector<KnownPoint> normal_offset_points(const CurveSampling& sampling, int 
     const Real others = std::max((1 + kNearestGap) * dt, isolation);
     bool own_found = false, clear = true;
     for (const auto& m : sampling.segment_minima(p, 2 * others)) {
-      // The refined minimum of the own basin lands within ~1e-9 of t (golden section on a smooth
-      // minimum resolves t to about sqrt(2^-64)).
+      // The refined minimum of the own basin lands within ~1e-9 of t (a smooth
+      // minimum is resolved to about sqrt(2^-64) in t).
       if (std::abs(m.t - t) <= 1e-6L) { own_found = true; continue; }
       clear = clear && m.distance >= others;
     }

@@ -14,7 +14,7 @@ namespace {
 constexpr int kAttemptsPerPoint = 20;
 
 // A minimum of the distance belongs to the branch at parameter `own` when it is this close to it
-// (golden-section refinement of a V-shaped minimum lands within ~1e-9).
+// (the refinement of a minimum lands within ~1e-9).
 bool same_parameter(Real t, double own) { return std::abs(t - own) <= 1e-6L * std::max<Real>(1, std::abs(own)); }
 
 // Denominators on the extension: at least this fraction of their largest coefficient.

@@ -42,6 +42,8 @@ bool queue_second_parameters(int n, const BatchWorkspace& w, std::size_t l, cons
   PairCheckQueue& q = pair_check_queue();
   const std::size_t lane = q.lanes;
   bool queued = false;
+  // z's own root is the one nearer t; the other is the second parameter the plane announces.
+  const int other = count == 2 ? (std::abs(roots[1] - c.t) > std::abs(roots[0] - c.t) ? 1 : 0) : -1;
   for (int i = 0; i < count; ++i) {
     const double start = std::clamp(roots[i], 0.0, 1.0);  // NaN stays NaN: not settled, refined to NaN
     const double from_t = std::abs(start - c.t);
@@ -51,6 +53,7 @@ bool queue_second_parameters(int n, const BatchWorkspace& w, std::size_t l, cons
     q.root_u[k] = w.u[l];
     q.root_v[k] = w.v[l];
     q.root_lane[k] = static_cast<std::uint8_t>(lane);
+    q.root_other[k] = i == other;
     queued = true;
   }
   if (!queued) return false;
@@ -85,7 +88,8 @@ void flush_pair_check_queue(const PlanData& plan, const InvertOptions& options, 
     const std::size_t lane = q.root_lane[k];
     detail::Refined r{q.root_t[k], q.root_distance[k]};
     if (std::isnan(r.distance)) r = detail::refine_parameter(plan, q.root_u[k], q.root_v[k], q.root_t[k], true);
-    if (r.distance <= tolerance && std::abs(r.t - q.t[lane]) > kDistinctParameterGap) q.second_found[lane] = 1;
+    const bool distinct = std::abs(r.t - q.t[lane]) > kDistinctParameterGap;
+    if ((r.distance <= tolerance && distinct) || (q.root_other[k] && !distinct)) q.second_found[lane] = 1;
   }
   clock.lap(&StageSeconds::refine);
   const std::size_t lanes = q.lanes;

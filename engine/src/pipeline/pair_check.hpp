@@ -3,7 +3,10 @@
 // estimate is small, a lane not certified isolated looks for a second parameter in span{z, second}.
 // Its roots wait in a per-thread queue until they fill a SIMD group of the Newton kernel; a lane
 // whose root refines onto the segment at a distinct parameter goes to the SVD path (double points
-// are always answered there), the others are answered on the fast path. No lane's answer depends
+// are always answered there), and so does a lane whose other root (the one farther from its t)
+// walks back to its t: the plane then missed the second parameter the small estimate announced
+// (two parameters close together, near a cusp), which the SVD path finds. The others are answered
+// on the fast path. No lane's answer depends
 // on the others in the queue, so neither the batch nor the thread count changes it.
 #include <array>
 #include <cstddef>
@@ -32,6 +35,7 @@ struct PairCheckQueue {
   // the back, so that the kernel's SIMD groups hold roots of similar work.
   std::array<double, 2 * kPairCheckLanes> root_t, root_u, root_v, root_distance;
   std::array<std::uint8_t, 2 * kPairCheckLanes> root_lane;
+  std::array<std::uint8_t, 2 * kPairCheckLanes> root_other;  // the root farther from the lane's t
   std::size_t near = 0, far = 0;
 };
 

@@ -7,6 +7,7 @@
 // a in [0, pi/2] is the segment [0,1], (pi/2, 3pi/4) is t > 1, 3pi/4 is t = inf, (3pi/4, pi) is
 // t < 0. Sampling a uniformly covers the far extension (which an engine's algebraic root can
 // land on) with as few samples as the segment.
+#include <optional>
 #include <vector>
 
 #include "bezinv/curve.hpp"
@@ -34,8 +35,8 @@ class CurveSampling {
 
   // Local minima of |P - p0| over the whole parameter line. A minimum whose sampled value minus
   // the length of the adjacent chords exceeds `cutoff` is not refined and reports that lower bound
-  // (no point of the curve near it is closer than `cutoff`); the others are refined by golden
-  // section to long double precision.
+  // (no point of the curve near it is closer than `cutoff`); the others are refined by Brent's
+  // method to what long double resolves.
   std::vector<DistanceMinimum> line_minima(RealPoint p0, Real cutoff) const;
 
   // Local minima of |P(t) - p0| over the segment alone: interior minima, and an end of the
@@ -48,10 +49,20 @@ class CurveSampling {
   std::optional<RealPoint> point_at_angle(Real a) const;
   DistanceMinimum refine(RealPoint p0, Real a_lo, Real a_hi, Real sampled_distance, Real sampled_angle) const;
 
+  // Squared distances from p0 to every sample, in double (what finds the local minima; each is
+  // then measured again in long double): +inf at a sample that is not a point.
+  void squared_distances(RealPoint p0, std::vector<double>& d2) const;
+
   Curve curve_;
   double diagonal_ = 0;
   int count_ = 0;  // samples over [0, pi); count_ / 2 is the sample at a = pi/2 (t = 1)
   std::vector<Sample> samples_;
+  // The samples again, as doubles relative to `origin_` (the first valid sample): near the curve
+  // they keep their digits however far it is from (0, 0); and chord_[k], the longer of the chords
+  // from sample k to its two neighbours on the closed line (inf next to a sample that is not a point).
+  RealPoint origin_;
+  std::vector<double> x_, y_;
+  std::vector<Real> chord_;
 };
 
 }  // namespace bezinv::datasets
