@@ -20,6 +20,11 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr Real kAngleTolerance = 0x1p-50L;
 constexpr int kBrentIterations = 200;
 
+// The sampling is made denser where a chord on the segment is longer than kLongChord times the
+// typical one (diagonal / (samples per degree x degree)), down to kDensifyDepth halvings.
+constexpr Real kLongChord = 8;
+constexpr int kDensifyDepth = 24;
+
 }  // namespace
 
 Real parameter_of_angle(Real a) {
@@ -30,12 +35,26 @@ Real parameter_of_angle(Real a) {
 
 CurveSampling::CurveSampling(Curve curve, int samples_per_degree)
     : curve_(std::move(curve)), diagonal_(control_diagonal(curve_)) {
-  count_ = 2 * samples_per_degree * std::max(curve_.degree(), 1);
-  samples_.resize(count_);
-  for (int k = 0; k < count_; ++k) {
-    const auto p = point_at_angle(angle(k));
-    if (p) samples_[k] = {*p, true};
+  // Uniform in the angle, then denser on the segment wherever the curve moves fast: between two
+  // samples of [0, pi/2] whose chord is longer than kLongChord typical chords, the midpoint is
+  // added, again and again (extreme weights crowd a long stretch of the curve into a sliver of
+  // parameter next to an end, which uniform samples would step over).
+  const int uniform = 2 * samples_per_degree * std::max(curve_.degree(), 1);
+  const Real long_chord = kLongChord * diagonal_ / (samples_per_degree * std::max(curve_.degree(), 1));
+  auto sample = [&](Real a) {
+    const auto p = point_at_angle(a);
+    angles_.push_back(a);
+    samples_.push_back(p ? Sample{*p, true} : Sample{});
+  };
+  auto uniform_angle = [&](int k) { return 2 * k == uniform ? kPi / 2 : kPi * k / uniform; };
+  sample(uniform_angle(0));
+  for (int k = 1; k < uniform; ++k) {
+    const Real a = uniform_angle(k);
+    if (2 * k <= uniform) densify(angles_.back(), samples_.back(), a, point_at_angle(a), long_chord, 0);
+    if (2 * k == uniform) last_ = static_cast<int>(angles_.size());
+    sample(a);
   }
+  count_ = static_cast<int>(angles_.size());
   for (const Sample& s : samples_)
     if (s.valid) {
       origin_ = s.p;
@@ -63,9 +82,21 @@ void CurveSampling::squared_distances(RealPoint p0, std::vector<double>& d2) con
   }
 }
 
+void CurveSampling::densify(Real a0, Sample s0, Real a1, std::optional<RealPoint> p1, Real long_chord, int depth) {
+  if (depth >= kDensifyDepth || !s0.valid || !p1 || !(distance(s0.p, *p1) > long_chord)) return;
+  const Real middle = (a0 + a1) / 2;
+  const auto p = point_at_angle(middle);
+  densify(a0, s0, middle, p, long_chord, depth + 1);
+  angles_.push_back(middle);
+  samples_.push_back(p ? Sample{*p, true} : Sample{});
+  densify(middle, samples_.back(), a1, p1, long_chord, depth + 1);
+}
+
+// The sample's angle; next to the ends of the closed line, the neighbour's angle a turn away.
 Real CurveSampling::angle(int k) const {
-  if (2 * k == count_) return kPi / 2;  // exactly, so point_at_angle recognizes t = 1
-  return kPi * k / count_;
+  if (k < 0) return angles_[count_ + k] - kPi;
+  if (k >= count_) return angles_[k - count_] + kPi;
+  return angles_[k];
 }
 
 std::optional<RealPoint> CurveSampling::point_at_angle(Real a) const {
@@ -156,13 +187,13 @@ std::vector<DistanceMinimum> CurveSampling::line_minima(RealPoint p0, Real cutof
       minima.push_back({t, d - chord, t >= 0 && t <= 1});
       continue;
     }
-    minima.push_back(refine(p0, angle(k) - kPi / count_, angle(k) + kPi / count_, d, angle(k)));
+    minima.push_back(refine(p0, angle(k - 1), angle(k + 1), d, angle(k)));
   }
   return minima;
 }
 
 std::vector<DistanceMinimum> CurveSampling::segment_minima(RealPoint p0, Real cutoff) const {
-  const int last = count_ / 2;  // a = pi/2, t = 1
+  const int last = last_;  // a = pi/2, t = 1
   thread_local std::vector<double> d2;
   squared_distances(p0, d2);
   std::vector<DistanceMinimum> minima;

@@ -123,6 +123,37 @@ TEST(HighPrecisionNearest, TheExactStationarityChangesSignAcrossTheTruth) {
   EXPECT_GE(checked, 40);
 }
 
+// Every family's truths, on a sample of its rows, against a second computation: exact rational
+// arithmetic says that the distance's derivative f = (P - p) . P' changes sign from - to + across
+// each truth within an ulp (t_true is the 128-bit root rounded to double), so t_true is the
+// parameter of a local minimum of the distance to the double input. (An end of the segment, the
+// nearest point of an off-curve row there, is not a stationary point: skipped.)
+TEST(StressRows, EveryFamilysTruthIsWhereTheExactDistanceHasAMinimum) {
+  int checked = 0;
+  for (Family family : kFamilies) {
+    int family_checked = 0;
+    for (CurveKind kind : {CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational})
+      for (int degree : {3, 4}) {
+        std::mt19937_64 rng(100 * static_cast<int>(family) + 10 * degree + static_cast<int>(kind));
+        const auto curve = stress_curve(family, kind, degree, 0, rng);
+        if (!curve) continue;
+        const CurveSampling sampling(curve->curve);
+        for (const StressRow& r : stress_rows(family, *curve, sampling, 6, 1e-6, rng))
+          for (double t : {r.t_true, r.t2_true}) {
+            if (!std::isfinite(t) || t == 0.0 || t == 1.0) continue;
+            const mpq_class below(std::nextafter(std::nextafter(t, -1e300), -1e300));
+            const mpq_class above(std::nextafter(std::nextafter(t, 1e300), 1e300));
+            EXPECT_LT(sgn(stationarity_exact(curve->curve, r.point, below)), 0) << to_string(family) << " t " << t;
+            EXPECT_GT(sgn(stationarity_exact(curve->curve, r.point, above)), 0) << to_string(family) << " t " << t;
+            ++family_checked;
+          }
+      }
+    EXPECT_GE(family_checked, 3) << to_string(family);
+    checked += family_checked;
+  }
+  EXPECT_GE(checked, 100);
+}
+
 StressRow row(Status expected, double t_true, unsigned also = 0) {
   StressRow r;
   r.point = {0.25, 0.5};

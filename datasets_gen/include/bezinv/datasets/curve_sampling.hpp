@@ -27,7 +27,8 @@ struct DistanceMinimum {
 
 class CurveSampling {
  public:
-  // samples_per_degree * max(degree, 1) samples over the segment, as many over the extension.
+  // samples_per_degree * max(degree, 1) samples over the segment, as many over the extension;
+  // more on the segment where the curve moves fast (curve_sampling.cpp, kLongChord).
   explicit CurveSampling(Curve curve, int samples_per_degree = 256);
 
   const Curve& curve() const { return curve_; }
@@ -46,6 +47,8 @@ class CurveSampling {
  private:
   struct Sample { RealPoint p; bool valid = false; };
   Real angle(int k) const;
+  // Adds samples between (a0, s0) and (a1, p1), in order, while their chord exceeds long_chord.
+  void densify(Real a0, Sample s0, Real a1, std::optional<RealPoint> p1, Real long_chord, int depth);
   std::optional<RealPoint> point_at_angle(Real a) const;
   DistanceMinimum refine(RealPoint p0, Real a_lo, Real a_hi, Real sampled_distance, Real sampled_angle) const;
 
@@ -55,7 +58,9 @@ class CurveSampling {
 
   Curve curve_;
   double diagonal_ = 0;
-  int count_ = 0;  // samples over [0, pi); count_ / 2 is the sample at a = pi/2 (t = 1)
+  int count_ = 0;  // samples over [0, pi)
+  int last_ = 0;   // the sample at a = pi/2 (t = 1)
+  std::vector<Real> angles_;
   std::vector<Sample> samples_;
   // The samples again, as doubles relative to `origin_` (the first valid sample): near the curve
   // they keep their digits however far it is from (0, 0); and chord_[k], the longer of the chords
