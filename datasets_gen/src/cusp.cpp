@@ -7,6 +7,7 @@
 #include "bezinv/datasets/on_curve_points.hpp"
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/datasets/reference_evaluation.hpp"
+#include "linear_condition.hpp"
 
 namespace bezinv::datasets {
 namespace {
@@ -17,34 +18,22 @@ constexpr Real kMinCurvature = 0.01L;     // |P''(tc)| / diagonal
 constexpr Real kMinSine = 0.2588190451L;  // sin 15 degrees, between P''(tc) and P'''(tc)
 constexpr Real kCuspWindow = 0.05L;       // parameters this near tc are the cusp's own branches
 
-// beta_i(t) of degree n, and its derivative n (beta_{i-1}^{n-1}(t) - beta_i^{n-1}(t)).
-Real beta(int n, int i, Real t) {
-  if (i < 0 || i > n) return 0;
-  Real b = 1;
-  for (int j = 1; j <= i; ++j) b = b * (n - i + j) / j;
-  for (int j = 0; j < n - i; ++j) b *= 1 - t;
-  for (int j = 0; j < i; ++j) b *= t;
-  return b;
-}
-Real beta_derivative(int n, int i, Real t) { return n * (beta(n - 1, i - 1, t) - beta(n - 1, i, t)); }
+using detail::beta;
 
-// Makes (num / den)'(tc) = 0 by the minimal-norm change of num (twice: the second pass removes what
-// rounding the first left).
+// d/dt beta_i^n(t) = n (beta_{i-1}^{n-1}(t) - beta_i^{n-1}(t)).
+Real beta_derivative(int n, int i, Real t) {
+  const Real left = i > 0 ? beta(n - 1, i - 1, t) : 0, right = i < n ? beta(n - 1, i, t) : 0;
+  return n * (left - right);
+}
+
+// Makes (num / den)'(tc) = 0: g_i = beta_i'(tc) den(tc) - beta_i(tc) den'(tc).
 void enforce_stationary(std::vector<double>& num, const std::vector<double>& den, Real tc) {
   const int n = static_cast<int>(num.size()) - 1;
   Real d = 0, dd = 0;
   for (int i = 0; i <= n; ++i) { d += den[i] * beta(n, i, tc); dd += den[i] * beta_derivative(n, i, tc); }
   std::vector<Real> g(n + 1);
-  Real gg = 0;
-  for (int i = 0; i <= n; ++i) {
-    g[i] = beta_derivative(n, i, tc) * d - beta(n, i, tc) * dd;
-    gg += g[i] * g[i];
-  }
-  for (int pass = 0; pass < 2; ++pass) {
-    Real r = 0;
-    for (int i = 0; i <= n; ++i) r += g[i] * num[i];
-    for (int i = 0; i <= n; ++i) num[i] = static_cast<double>(num[i] - g[i] * r / gg);
-  }
+  for (int i = 0; i <= n; ++i) g[i] = beta_derivative(n, i, tc) * d - beta(n, i, tc) * dd;
+  detail::enforce_linear_condition(num, g);
 }
 
 // No branch of the curve but the cusp's own comes within kIsolation * diagonal of `point`.

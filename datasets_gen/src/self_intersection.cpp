@@ -9,6 +9,7 @@
 #include "bezinv/datasets/on_curve_points.hpp"
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/datasets/reference_evaluation.hpp"
+#include "linear_condition.hpp"
 
 namespace bezinv::datasets {
 namespace {
@@ -18,30 +19,16 @@ constexpr double kCoincidence = 1e-14;    // |P(t1) - P(t2)| / diagonal
 constexpr Real kMinSine = 0.2588190451L;  // sin 15 degrees
 constexpr Real kMinSpeed = 0.01L;         // / diagonal
 
-Real beta(int n, int i, Real t) {
-  Real b = 1;
-  for (int j = 1; j <= i; ++j) b = b * (n - i + j) / j;
-  for (int j = 0; j < n - i; ++j) b *= 1 - t;
-  for (int j = 0; j < i; ++j) b *= t;
-  return b;
-}
+using detail::beta;
 
-// Makes num(t1)/den(t1) = num(t2)/den(t2) by the minimal-norm change of num.
+// Makes num(t1)/den(t1) = num(t2)/den(t2): g_i = beta_i(t1) den(t2) - beta_i(t2) den(t1).
 void enforce_equal_values(std::vector<double>& num, const std::vector<double>& den, Real t1, Real t2) {
   const int n = static_cast<int>(num.size()) - 1;
   Real d1 = 0, d2 = 0;
   for (int i = 0; i <= n; ++i) { d1 += den[i] * beta(n, i, t1); d2 += den[i] * beta(n, i, t2); }
   std::vector<Real> g(n + 1);
-  Real gg = 0;
-  for (int i = 0; i <= n; ++i) {
-    g[i] = beta(n, i, t1) * d2 - beta(n, i, t2) * d1;
-    gg += g[i] * g[i];
-  }
-  for (int pass = 0; pass < 2; ++pass) {
-    Real r = 0;
-    for (int i = 0; i <= n; ++i) r += g[i] * num[i];
-    for (int i = 0; i <= n; ++i) num[i] = static_cast<double>(num[i] - g[i] * r / gg);
-  }
+  for (int i = 0; i <= n; ++i) g[i] = beta(n, i, t1) * d2 - beta(n, i, t2) * d1;
+  detail::enforce_linear_condition(num, g);
 }
 
 }  // namespace
