@@ -221,6 +221,11 @@ std::optional<StressCurve> stress_curve(Family family, CurveKind kind, int degre
       c.curve = translated(random_curve(kind, degree, rng, polygon), dx, dy);
       return c;
     }
+    case Family::tiny: {
+      const Curve small = scaled(random_curve(kind, degree, rng, polygon), std::pow(10.0, uniform(rng, -12.0, -6.0)));
+      c.curve = index % 2 ? translated(small, 1.0, 1.0) : small;
+      return c;
+    }
     case Family::elevated:
       if (degree < 3) return std::nullopt;
       c.curve = degree_elevated(random_curve(kind, degree - 2, rng, polygon), 2);
@@ -269,6 +274,7 @@ const char* to_string(Family family) {
     case Family::crossings: return "crossings";
     case Family::cusps: return "cusps";
     case Family::translated: return "translated";
+    case Family::tiny: return "tiny";
     case Family::elevated: return "elevated";
     case Family::improper: return "improper";
     case Family::weights: return "weights";
@@ -308,6 +314,7 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
   switch (family) {
     case Family::on_curve:
     case Family::translated:
+    case Family::tiny:
     case Family::elevated:
     case Family::weights:
     case Family::papers: known = segment_points(sampling, count, rng); break;

@@ -14,4 +14,12 @@ Curve translated(const Curve& curve, double dx, double dy) {
   return c;
 }
 
+Curve scaled(const Curve& curve, double factor) {
+  Curve c = curve;
+  c.id = curve.id + "-scaled";
+  for (double& v : c.x_num) v *= factor;
+  for (double& v : c.y_num) v *= factor;
+  return c;
+}
+
 }  // namespace bezinv::datasets

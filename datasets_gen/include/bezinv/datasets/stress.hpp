@@ -27,6 +27,9 @@
 //              other branch is never within rounding of the point); status ok.
 //   translated on_curve's points on the curve moved 1e6..1e12 away from the origin (map
 //              coordinates): the digits the plan's centring must keep. Status ok.
+//   tiny       on_curve's points on curves shrunk by 1e-12..1e-6 (about the origin; every other
+//              curve then moved by (1, 1), where its coordinates' ulps reach 2e-4 of its diagonal):
+//              nothing absolute may hide in the engine's scaling. Status ok.
 //   elevated   on_curve's points on a curve of degree n - 2 written at degree n (in double, so its
 //              top coefficients are round-off): the engine's degree reduction. Status ok.
 //   improper   on_curve's points on P(t) = Q(t^2) (even degrees): every point has a second
@@ -52,10 +55,11 @@
 
 namespace bezinv::datasets {
 
-enum class Family { on_curve, near_ends, extension, noisy, far, crossings, cusps, translated, elevated, improper, weights, papers };
-inline constexpr std::array kFamilies = {Family::on_curve, Family::near_ends,  Family::extension, Family::noisy,
-                                         Family::far,      Family::crossings,  Family::cusps,     Family::translated,
-                                         Family::elevated, Family::improper,   Family::weights,   Family::papers};
+enum class Family { on_curve, near_ends, extension, noisy, far, crossings, cusps, translated, tiny, elevated, improper, weights, papers };
+inline constexpr std::array kFamilies = {Family::on_curve,   Family::near_ends, Family::extension, Family::noisy,
+                                         Family::far,        Family::crossings, Family::cusps,     Family::translated,
+                                         Family::tiny,       Family::elevated,  Family::improper,  Family::weights,
+                                         Family::papers};
 const char* to_string(Family family);
 std::optional<Family> family_from_string(std::string_view name);
 

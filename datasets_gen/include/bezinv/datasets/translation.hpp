@@ -1,5 +1,6 @@
 #pragma once
-// The same curve moved far from the origin: what the plan's centring must make harmless.
+// The same curve moved far from the origin, or shrunk: what the plan's centring and scaling must
+// make harmless.
 #include "bezinv/curve.hpp"
 
 namespace bezinv::datasets {
@@ -8,5 +9,9 @@ namespace bezinv::datasets {
 // rational_bezier that is w_i (a_i + dx)). Rounded once per coefficient, so the result is the
 // translate only up to u * |dx|: answers for it must be computed from it, not from the original.
 Curve translated(const Curve& curve, double dx, double dy);
+
+// factor P(t) about the origin: x_num and y_num times factor, rounded once per coefficient (the
+// same caveat as translated).
+Curve scaled(const Curve& curve, double factor);
 
 }  // namespace bezinv::datasets
