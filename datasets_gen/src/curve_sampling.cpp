@@ -110,7 +110,7 @@ DistanceMinimum CurveSampling::refine(RealPoint p0, Real a_lo, Real a_hi, Real s
                                       Real sampled_angle) const {
   // Brent's minimization (golden section, with parabolic steps where they are safe) of the squared
   // distance: near a minimum it is a parabola in the angle, on the curve (distance ~0) and off it,
-  // so parabolic steps converge in a few evaluations where golden section needs ~80.
+  // so parabolic steps converge in a few evaluations where golden section alone needs ~70.
   auto f = [&](Real a) {
     const auto p = point_at_angle(a);
     if (!p) return kInf;
