@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "support/bits.hpp"
+#include "support/curve_kinds.hpp"
 #include "bezinv/curve.hpp"
 #include "bezinv/datasets/curve_sampling.hpp"
 #include "bezinv/datasets/degree_elevation.hpp"

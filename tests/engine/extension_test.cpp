@@ -2,7 +2,7 @@
 // segment comes within a radius of a point. Checked against the curve's extension evaluated
 // independently: the homogeneous form sum c_i C(n,i) (1-t)^(n-i) t^i in long double at each t,
 // scaled by 1/|t| far out so nothing overflows (not the engine's reparametrization in s).
-#include "support/bits.hpp"
+#include "support/curve_kinds.hpp"
 #include "extension.hpp"
 
 #include <gtest/gtest.h>

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "support/bits.hpp"
+#include "support/curve_kinds.hpp"
 #include "bezinv/curve.hpp"
 #include "bezinv/datasets/curve_sampling.hpp"
 #include "bezinv/datasets/random_curve.hpp"

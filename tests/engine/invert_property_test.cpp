@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "support/bits.hpp"
+#include "support/curve_kinds.hpp"
 #include "bezinv/curve.hpp"
 #include "plan_data.hpp"
 #include "bezinv/datasets/curve_sampling.hpp"

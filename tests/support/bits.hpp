@@ -1,12 +1,12 @@
 #pragma once
-// Bit-for-bit comparison of doubles (and the special values tests feed in): the engine promises the same bits across paths, kernels and
-// thread counts, which == cannot say (it equates +0 and -0, and never NaN with NaN).
+// Bit-for-bit comparison of doubles (and the NaN tests feed in): the engine promises the same
+// bits across paths, kernels and thread counts, which == cannot say (it equates +0 and -0, and
+// never NaN with NaN).
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <vector>
-
-#include "bezinv/curve.hpp"
 
 namespace bezinv::test_support {
 
@@ -20,8 +20,5 @@ inline bool same_bits(const std::vector<double>& a, const std::vector<double>& b
 }
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Every kind of plane curve the plan takes.
-inline constexpr CurveKind kAllKinds[] = {CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational};
 
 }  // namespace bezinv::test_support
