@@ -28,6 +28,7 @@
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
 #include "demo.hpp"
+#include "formula.hpp"
 #include "profile.hpp"
 #include "stress.hpp"
 
@@ -347,6 +348,17 @@ int main(int argc, char** argv) {
   stress->add_option("--report", stress_options.report_directory,
                      "Write DIR/index.html (one page, no script), DIR/summary.json and reproducers in DIR/repro");
 
+  bezinv::cli::FormulaOptions formula_options;
+  std::string formula_base;
+  CLI::App* formula = app.add_subcommand(
+      "formula", "Per curve: the inversion formula t = N(x,y)/M(x,y), its centre, the implicit equation, singular points");
+  formula->add_option("--curves", formula_options.curves_path, "CURVES.json")->required();
+  formula->add_option("--curve", formula_options.curve_id, "Only the curve with this id");
+  formula->add_option("--base-points", formula_base,
+                      "Comma-separated parameters (or inf) of the formula's free base points: a conic's centre "
+                      "(default inf: P(infinity)), from degree 4 up to n - 3 of them");
+  formula->add_flag("--json", formula_options.json, "One JSON object on stdout");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -363,6 +375,10 @@ int main(int argc, char** argv) {
       std::tie(stress_options.min_degree, stress_options.max_degree) = bezinv::cli::parse_degrees(stress_degrees);
       stress_options.baselines = bezinv::cli::parse_baselines(stress_baselines);
       return bezinv::cli::run_stress(stress_options);
+    }
+    if (formula->parsed()) {
+      formula_options.base_parameters = bezinv::cli::parse_base_parameters(formula_base);
+      return bezinv::cli::run_formula(formula_options);
     }
     if (invert->parsed()) {
       invert_arguments.threads = checked_threads(invert_threads);

@@ -133,6 +133,16 @@ inline constexpr double kIsolationMargin = 1e-12;
 // (faster there, docs/kernels.md). The two differ in the last bits: part of every answer's bits.
 inline constexpr int kLaneBatchedSvdMaxDegree = 16;
 
+// ---- Inversion formulae (bezinv/inversion_formula.hpp) -----------------------------------------
+
+// The solutions (N, M) of the formula's sampled system are the singular vectors whose singular
+// values are at most this times the largest: rounding leaves ~1e-16 .. 1e-12 there at degrees up
+// to 32, while a curve with no formula (traced more than once) keeps ~1e-4 or more.
+inline constexpr double kFormulaNullRatio = 1e-8;
+// Base points asked for fix the formula when the conditions they make on the solutions have no
+// singular value below this times the largest (two coinciding base points make one ~0).
+inline constexpr double kFormulaChoiceRatio = 1e-8;
+
 // ---- Curves refused ----------------------------------------------------------------------------
 
 // A denominator has a root on [0, 1] (validate() refuses the curve) when subdivision cannot bound

@@ -1,0 +1,131 @@
+// `bezinv formula` end to end: Wang & Joe's four worked examples as a user runs them (CURVES.json
+// in, JSON out), compared with the paper's formulae, centres, implicit equation, double points and
+// parameters; and the command's errors.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "support/run_bezinv.hpp"
+#include "support/scratch_directory.hpp"
+
+namespace {
+
+using bezinv::test_support::quoted;
+using bezinv::test_support::run_bezinv;
+using bezinv::test_support::ScratchDirectory;
+using nlohmann::json;
+
+// The paper's four curves: Examples 1 and 2 (the semicircle and its reparametrization (14)) as
+// written there, Example 3's cubic, and Example 4's quartic in s = t + 1 (so that its denominator
+// has no root on the segment), its power form converted exactly to the Bernstein basis of s.
+constexpr const char* kPaperCurves = R"({"curves": [
+ {"id": "example 1", "kind": "rational", "x_num": [0, 1, 0], "x_den": [1, 0, 1], "y_num": [1, 0, -1], "y_den": [1, 0, 1]},
+ {"id": "example 2", "kind": "rational", "x_num": [0, 0.5, 0], "x_den": [0.25, 0, 1], "y_num": [0.25, 0, -1], "y_den": [0.25, 0, 1]},
+ {"id": "example 3", "kind": "rational_bezier", "points": [[0,0],[1,1],[0,1],[1,0]], "weights": [1,2,2,1]},
+ {"id": "example 4", "kind": "rational", "x_num": [4, 3, 2, 1.5, 1], "x_den": [4, 2, 2, 2, 1], "y_num": [4, 1, 0, -0.5, -1], "y_den": [4, 2, 2, 2, 1]}
+]})";
+
+struct FormulaRun {
+  ScratchDirectory scratch{"bezinv-cli-formula-"};
+  json curves;  // the "curves" array of the command's output
+  FormulaRun(const std::string& arguments) {
+    const std::string path = scratch.write("curves.json", kPaperCurves);
+    const auto run = run_bezinv(scratch, "formula --json --curves " + quoted(path) + " " + arguments);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    curves = json::parse(run.out)["curves"];
+  }
+};
+
+// sum over the monomials a_ij x^i y^j of a polynomial in the output.
+double evaluate(const json& polynomial, double x, double y) {
+  double sum = 0.0;
+  for (const auto& term : polynomial["monomials"])
+    sum += term[2].get<double>() * std::pow(x, term[0].get<int>()) * std::pow(y, term[1].get<int>());
+  return sum;
+}
+
+// The printed N / M equals the paper's formula at points spread over the plane (two formulae of
+// one pencil agree everywhere: Theorem 4).
+template <class Paper>
+void expect_formula(const json& curve, Paper paper) {
+  const json& f = curve["formula"];
+  for (double x = -2.25; x <= 2.25; x += 0.5)
+    for (double y = -2.25; y <= 2.25; y += 0.5) {
+      const double expected = paper(x, y);
+      if (!std::isfinite(expected) || std::abs(expected) > 1e6) continue;
+      EXPECT_NEAR(evaluate(f["N"], x, y) / evaluate(f["M"], x, y), expected, 1e-10 * (1 + std::abs(expected)))
+          << curve["id"] << " at (" << x << ", " << y << ")";
+    }
+}
+
+void expect_centre(const json& curve, double x, double y) {
+  const json& c = curve["formula"]["centre"];
+  ASSERT_TRUE(c.is_array()) << curve["id"];
+  EXPECT_NEAR(c[0].get<double>() / c[2].get<double>(), x, 1e-12) << curve["id"];
+  EXPECT_NEAR(c[1].get<double>() / c[2].get<double>(), y, 1e-12) << curve["id"];
+}
+
+TEST(CliFormula, ReproducesThePapersFourExamples) {
+  const FormulaRun run("");
+  ASSERT_EQ(run.curves.size(), 4u);
+  // (12): centre P(infinity) = (-1, 0).
+  expect_formula(run.curves[0], [](double x, double y) { return (x - y + 1) / (2 * (x + 1)); });
+  expect_centre(run.curves[0], -1, 0);
+  // (15): centre (-4/5, -3/5).
+  expect_formula(run.curves[1], [](double x, double y) { return (2 * x - y + 1) / (4 * x + 3 * y + 5); });
+  expect_centre(run.curves[1], -0.8, -0.6);
+  // Example 3: t = (5y - 6x) / (10y - 6), centred at the double point (1/2, 3/5), which has the
+  // parameters (7 -+ sqrt 21) / 14; F = 1225y^3 - 756x^2y - 2520y^2 + 756xy + 1512x^2 + 1512y - 1512x.
+  const json& cubic = run.curves[2];
+  expect_formula(cubic, [](double x, double y) { return (5 * y - 6 * x) / (10 * y - 6); });
+  expect_centre(cubic, 0.5, 0.6);
+  auto paper_f = [](double x, double y) {
+    return 1225 * y * y * y - 756 * x * x * y - 2520 * y * y + 756 * x * y + 1512 * x * x + 1512 * y - 1512 * x;
+  };
+  const double k = evaluate(cubic["implicit"]["F"], 3, 5) / paper_f(3, 5);
+  for (double x = -2; x <= 2; x += 0.5)
+    for (double y = -2; y <= 2; y += 0.5)
+      EXPECT_NEAR(evaluate(cubic["implicit"]["F"], x, y) / k, paper_f(x, y), 1e-9 * (1 + std::abs(paper_f(x, y))));
+  const json& base = cubic["base_points"]["real"];
+  ASSERT_EQ(base.size(), 1u);
+  EXPECT_EQ(base[0]["kind"], "double_point");
+  EXPECT_NEAR(base[0]["point"][0].get<double>(), 0.5, 1e-12);
+  EXPECT_NEAR(base[0]["point"][1].get<double>(), 0.6, 1e-12);
+  EXPECT_NEAR(base[0]["parameters"][0][0].get<double>(), (7 - std::sqrt(21.0)) / 14, 1e-12);
+  EXPECT_NEAR(base[0]["parameters"][1][0].get<double>(), (7 + std::sqrt(21.0)) / 14, 1e-12);
+  // Example 4 (default choice): the three double points are base points, whichever the fourth.
+  int doubles = 0, isolated = 0;
+  for (const auto& p : run.curves[3]["base_points"]["real"]) {
+    doubles += p["kind"] == "double_point";
+    isolated += p["kind"] == "isolated_point";
+  }
+  EXPECT_EQ(doubles, 2);
+  EXPECT_EQ(isolated, 1);
+}
+
+TEST(CliFormula, BasePointsChooseTheConicsCentreAndTheQuarticsFourthBasePoint) {
+  const FormulaRun run("--base-points 0");
+  // (13): centre P(0) = (0, 1).
+  expect_formula(run.curves[0], [](double x, double y) { return (1 - y) / (x - y + 1); });
+  expect_centre(run.curves[0], 0, 1);
+  // Example 4 with its fourth base point at (1, 1) = P(s = 0): t = x(x-1) / (y(y-1)), s = t + 1.
+  expect_formula(run.curves[3], [](double x, double y) { return (x * (x - 1) + y * (y - 1)) / (y * (y - 1)); });
+  // The cubic has no free choice: a base point asked for is an error of that curve alone.
+  EXPECT_TRUE(run.curves[2]["formula"].contains("error"));
+}
+
+TEST(CliFormula, AnUnknownCurveOrABadBasePointIsAnInputError) {
+  ScratchDirectory scratch("bezinv-cli-formula-");
+  const std::string path = scratch.write("curves.json", kPaperCurves);
+  auto run = run_bezinv(scratch, "formula --curves " + quoted(path) + " --curve nope");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("no curve with id \"nope\""), std::string::npos) << run.err;
+  run = run_bezinv(scratch, "formula --curves " + quoted(path) + " --base-points 0.5,x");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("'x'"), std::string::npos) << run.err;
+}
+
+}  // namespace
