@@ -1,6 +1,6 @@
 #include "bezinv/inversion_formula.hpp"
 
-#include <Eigen/SVD>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -136,8 +136,7 @@ InversionFormula::InversionFormula(const InversionPlan& plan, const FormulaChoic
     Eigen::MatrixXd g(on_segment, free.cols());
     for (int k = 0; k < on_segment; ++k)
       g.row(k) = terms_at(d, samples[static_cast<std::size_t>(k)].point) * basis.bottomRows(m) * free;
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(g, Eigen::ComputeThinV);
-    a = free * svd.matrixV().col(0);
+    a = free * detail::largest_right_singular_vector(g);
   }
   Eigen::VectorXd c = basis * a;
   // A line traced more than once has solutions with N and M multiples of the line's equation:

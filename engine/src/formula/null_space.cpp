@@ -20,4 +20,9 @@ NullSpace null_space(const Eigen::MatrixXd& a, int dimension) {
   return out;
 }
 
+Eigen::VectorXd largest_right_singular_vector(const Eigen::MatrixXd& a) {
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullV);
+  return svd.matrixV().col(0);
+}
+
 }  // namespace bezinv::detail

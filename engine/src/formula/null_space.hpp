@@ -1,6 +1,8 @@
 #pragma once
 // The null space of a (numerically) rank-deficient matrix, of a dimension known in advance, from
 // its singular value decomposition: the right singular vectors of the smallest singular values.
+// Every SVD of the formulae is here, one instantiation of Eigen's (it is the slowest part of
+// the engine to compile).
 #include <Eigen/Core>
 
 namespace bezinv::detail {
@@ -13,5 +15,8 @@ struct NullSpace {
 
 // a: rows x cols, any shape; 1 <= dimension <= cols.
 NullSpace null_space(const Eigen::MatrixXd& a, int dimension);
+
+// The unit vector x maximizing |a x| (the right singular vector of the largest singular value).
+Eigen::VectorXd largest_right_singular_vector(const Eigen::MatrixXd& a);
 
 }  // namespace bezinv::detail

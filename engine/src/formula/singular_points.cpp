@@ -1,9 +1,9 @@
 #include "bezinv/singular_points.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "bernstein_arithmetic.hpp"
@@ -67,47 +67,67 @@ Complex value(const BernsteinPoly& p, Complex t) {
   return b.empty() ? Complex{} : b[0];
 }
 
-// The roots of p (Bernstein, degree L) over C, t = infinity included as +inf. With s = t / (1 - t)
-// p(t) = (1 - t)^L sum_i C(L, i) p_i s^i: the roots in s are a companion matrix's eigenvalues,
-// each polished by Newton's method on p itself.
+// The roots of p (Bernstein, degree L) over C, t = infinity included as +inf. With s = t / (1 - t),
+// p(t) = (1 - t)^L q(s), q(s) = sum_i C(L, i) p_i s^i (the scaled Bernstein basis, well conditioned
+// for roots near the segment): q's roots by the Aberth-Ehrlich iteration (all roots at once, each
+// corrected by Newton's step deflated by the others; cubic convergence to simple roots, linear to
+// a cusp's double root), then t = s / (1 + s). A root of q at s = -1 is t = infinity; a missing
+// leading coefficient of q (p_L = p(1) = 0) is a root at t = 1, taken out first.
 std::vector<Complex> roots(BernsteinPoly p) {
   std::vector<Complex> out;
   const double size = detail::max_abs(p);
   if (!(size > 0.0)) return out;
-  // p(1) = p_L = 0: a root at t = 1 (s = infinity); deflate by dropping it (p / t... in s).
   while (p.size() > 1 && std::abs(p.back()) <= 1e-13 * size) {
     out.emplace_back(1.0, 0.0);
-    // p = (1 - t) q: q_i = p_i L / (L - i) for i < L.
+    // p = (1 - t) r: r_i = p_i L / (L - i) for i < L.
     const int L = static_cast<int>(p.size()) - 1;
-    BernsteinPoly q(static_cast<std::size_t>(L));
-    for (int i = 0; i < L; ++i) q[static_cast<std::size_t>(i)] = p[static_cast<std::size_t>(i)] * L / (L - i);
-    p = std::move(q);
+    BernsteinPoly r(static_cast<std::size_t>(L));
+    for (int i = 0; i < L; ++i) r[static_cast<std::size_t>(i)] = p[static_cast<std::size_t>(i)] * L / (L - i);
+    p = std::move(r);
   }
   const int L = static_cast<int>(p.size()) - 1;
   if (L == 0) return out;
-  std::vector<double> a(static_cast<std::size_t>(L + 1));
-  for (int i = 0; i <= L; ++i) a[static_cast<std::size_t>(i)] = binomial(L, i) * p[static_cast<std::size_t>(i)];
-  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(L, L);
-  for (int i = 1; i < L; ++i) companion(i, i - 1) = 1.0;
-  for (int i = 0; i < L; ++i) companion(i, L - 1) = -a[static_cast<std::size_t>(i)] / a[static_cast<std::size_t>(L)];
-  const Eigen::EigenSolver<Eigen::MatrixXd> solver(companion, /*computeEigenvectors=*/false);
-  const BernsteinPoly dp = detail::derivative(p, false);
-  for (Eigen::Index k = 0; k < solver.eigenvalues().size(); ++k) {
-    const Complex s = solver.eigenvalues()(k);
-    if (std::abs(1.0 + s) <= 1e-7 * std::max(1.0, std::abs(s))) {  // t = s / (1 + s) = infinity
-      out.emplace_back(std::numeric_limits<double>::infinity(), 0.0);
-      continue;
+  std::vector<double> q(static_cast<std::size_t>(L + 1));
+  for (int i = 0; i <= L; ++i) q[static_cast<std::size_t>(i)] = binomial(L, i) * p[static_cast<std::size_t>(i)];
+  // q and q' at s by Horner's rule.
+  auto evaluate = [&](Complex s, Complex& value, Complex& slope) {
+    value = q[static_cast<std::size_t>(L)];
+    slope = 0.0;
+    for (int i = L - 1; i >= 0; --i) {
+      slope = slope * s + value;
+      value = value * s + q[static_cast<std::size_t>(i)];
     }
-    Complex t = s / (1.0 + s);
-    for (int iteration = 0; iteration < 60; ++iteration) {
-      const Complex f = value(p, t), df = value(dp, t);
-      if (f == Complex{} || df == Complex{}) break;
-      const Complex step = f / df;
-      if (!std::isfinite(step.real()) || !std::isfinite(step.imag())) break;
-      t -= step;
-      if (std::abs(step) <= 1e-15 * std::max(1.0, std::abs(t))) break;
+  };
+  // Start on a circle of the roots' geometric mean radius |q_0 / q_L|^(1/L), at angles that avoid
+  // the real axis (conjugate pairs must be able to separate).
+  const double radius = std::pow(std::abs(q[0]) / std::abs(q[static_cast<std::size_t>(L)]) + 1e-300, 1.0 / L);
+  std::vector<Complex> z(static_cast<std::size_t>(L));
+  for (int k = 0; k < L; ++k)
+    z[static_cast<std::size_t>(k)] = std::polar(std::isfinite(radius) && radius > 0 ? radius : 1.0,
+                                                2.0 * std::numbers::pi * (k + 0.25) / L + 0.4);
+  for (int iteration = 0; iteration < 500; ++iteration) {
+    double largest_step = 0.0;
+    for (int k = 0; k < L; ++k) {
+      Complex value, slope;
+      Complex& zk = z[static_cast<std::size_t>(k)];
+      evaluate(zk, value, slope);
+      if (value == Complex{}) continue;
+      const Complex ratio = value / slope;
+      Complex repulsion{};
+      for (int j = 0; j < L; ++j)
+        if (j != k) repulsion += 1.0 / (zk - z[static_cast<std::size_t>(j)]);
+      const Complex step = ratio / (1.0 - ratio * repulsion);
+      if (!std::isfinite(step.real()) || !std::isfinite(step.imag())) continue;
+      zk -= step;
+      largest_step = std::max(largest_step, std::abs(step) / std::max(1.0, std::abs(zk)));
     }
-    out.push_back(t);
+    if (largest_step <= 1e-15) break;
+  }
+  for (const Complex s : z) {
+    if (std::abs(1.0 + s) <= 1e-7 * std::max(1.0, std::abs(s)))
+      out.emplace_back(std::numeric_limits<double>::infinity(), 0.0);  // t = s / (1 + s) = infinity
+    else
+      out.push_back(s / (1.0 + s));
   }
   return out;
 }
@@ -181,11 +201,6 @@ BasePoints base_points(const InversionPlan& plan, const InversionFormula& formul
         taken[b] = true;
         parameters.push_back(real[b].t);
       }
-    std::sort(parameters.begin(), parameters.end(), [](Complex x, Complex y) {
-      const bool rx = x.imag() == 0.0 || std::isinf(x.real()), ry = y.imag() == 0.0 || std::isinf(y.real());
-      if (std::abs(x.imag()) != std::abs(y.imag())) return std::abs(x.imag()) < std::abs(y.imag());
-      return rx != ry ? rx : x.real() < y.real();
-    });
     BasePoint point;
     const PlaneFrame& frame = framed.frame;
     point.point = frame.from_frame(real[a].point[0], real[a].point[1]);
@@ -206,6 +221,10 @@ BasePoints base_points(const InversionPlan& plan, const InversionFormula& formul
     } else {
       point.kind = BasePointKind::multiple_point;
     }
+    // Real parameters increasing (infinity last); a conjugate pair with the positive imaginary part first.
+    std::sort(parameters.begin(), parameters.end(), [](Complex x, Complex y) {
+      return x.real() != y.real() ? x.real() < y.real() : x.imag() > y.imag();
+    });
     point.parameters = std::move(parameters);
     result.points.push_back(std::move(point));
   }
