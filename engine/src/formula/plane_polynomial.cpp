@@ -29,31 +29,60 @@ PlanePolynomial::PlanePolynomial(int degree, PlaneFrame frame, std::vector<doubl
     throw std::invalid_argument("PlanePolynomial: degree and number of coefficients disagree");
 }
 
+namespace {
+
+// The homogenized Chebyshev terms T_k(a, w) = w^k T_k(a / w), k = 0..d, into t (room for d + 1):
+// T_{k+1} = 2 a T_k - w^2 T_{k-1}.
+void chebyshev_terms(int d, double a, double w, double* t) {
+  t[0] = 1.0;
+  if (d >= 1) t[1] = a;
+  const double w2 = w * w;
+  for (int k = 1; k < d; ++k) t[k + 1] = 2.0 * a * t[k] - w2 * t[k - 1];
+}
+
+// Up to this degree the terms are kept on the stack (every formula bezinv computes): evaluating
+// a formula allocates nothing.
+constexpr int kStackDegree = 64;
+
+// T_i(u, w), T_j(v, w) and w^k, k = 0..d, one after the other in `terms` (room for 3 (d + 1)).
+void term_tables(int d, double u, double v, double w, double* terms) {
+  chebyshev_terms(d, u, w, terms);
+  chebyshev_terms(d, v, w, terms + d + 1);
+  double* wp = terms + 2 * (d + 1);
+  wp[0] = 1.0;
+  for (int k = 0; k < d; ++k) wp[k + 1] = wp[k] * w;
+}
+
+}  // namespace
+
 void PlanePolynomial::homogeneous_terms(int degree, double u, double v, double w, std::span<double> out) {
   assert(out.size() >= static_cast<std::size_t>(size(degree)));
-  // T_k(U, W) = W^k T_k(U / W), and W^(d - i - j) to bring every term to degree d.
-  std::vector<double> tu(degree + 1), tv(degree + 1), wp(degree + 1);
-  const double w2 = w * w;
-  tu[0] = tv[0] = wp[0] = 1.0;
-  if (degree >= 1) {
-    tu[1] = u;
-    tv[1] = v;
-    wp[1] = w;
-  }
-  for (int k = 1; k < degree; ++k) {
-    tu[k + 1] = 2.0 * u * tu[k] - w2 * tu[k - 1];
-    tv[k + 1] = 2.0 * v * tv[k] - w2 * tv[k - 1];
-    wp[k + 1] = wp[k] * w;
-  }
+  std::array<double, 3 * (kStackDegree + 1)> stack;
+  std::vector<double> heap(degree > kStackDegree ? 3 * static_cast<std::size_t>(degree + 1) : 0);
+  double* tu = degree > kStackDegree ? heap.data() : stack.data();
+  term_tables(degree, u, v, w, tu);
+  const double* tv = tu + degree + 1;
+  const double* wp = tv + degree + 1;
+  // W^(d - i - j) brings every term to degree d.
   for (int k = 0; k <= degree; ++k)
     for (int j = 0; j <= k; ++j) out[static_cast<std::size_t>(index(k - j, j))] = tu[k - j] * tv[j] * wp[degree - k];
 }
 
 double PlanePolynomial::homogeneous(double u, double v, double w) const {
-  std::vector<double> terms(coefficients_.size());
-  homogeneous_terms(degree_, u, v, w, terms);
+  std::array<double, 3 * (kStackDegree + 1)> stack;
+  std::vector<double> heap(degree_ > kStackDegree ? 3 * static_cast<std::size_t>(degree_ + 1) : 0);
+  double* tu = degree_ > kStackDegree ? heap.data() : stack.data();
+  term_tables(degree_, u, v, w, tu);
+  const double* tv = tu + degree_ + 1;
+  const double* wp = tv + degree_ + 1;
+  // sum_k w^(d-k) sum_j c_(k-j, j) T_(k-j)(u) T_j(v), in index() order.
   double sum = 0.0;
-  for (std::size_t k = 0; k < terms.size(); ++k) sum += coefficients_[k] * terms[k];
+  std::size_t e = 0;
+  for (int k = 0; k <= degree_; ++k) {
+    double row = 0.0;
+    for (int j = 0; j <= k; ++j) row += coefficients_[e++] * tu[k - j] * tv[j];
+    sum += row * wp[degree_ - k];
+  }
   return sum;
 }
 
