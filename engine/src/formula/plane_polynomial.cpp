@@ -44,44 +44,48 @@ void chebyshev_terms(int d, double a, double w, double* t) {
 // a formula allocates nothing.
 constexpr int kStackDegree = 64;
 
-// T_i(u, w), T_j(v, w) and w^k, k = 0..d, one after the other in `terms` (room for 3 (d + 1)).
-void term_tables(int d, double u, double v, double w, double* terms) {
-  chebyshev_terms(d, u, w, terms);
-  chebyshev_terms(d, v, w, terms + d + 1);
-  double* wp = terms + 2 * (d + 1);
-  wp[0] = 1.0;
-  for (int k = 0; k < d; ++k) wp[k + 1] = wp[k] * w;
-}
+// T_i(u, w), T_j(v, w) and w^k, k = 0..d: the tables every term T_i(u) T_j(v) w^(d - i - j) is
+// a product from (on the stack up to kStackDegree).
+class TermTables {
+ public:
+  TermTables(int d, double u, double v, double w) {
+    if (d > kStackDegree) heap_.resize(3 * static_cast<std::size_t>(d + 1));
+    tu = d > kStackDegree ? heap_.data() : stack_.data();
+    tv = tu + d + 1;
+    wp = tv + d + 1;
+    chebyshev_terms(d, u, w, tu);
+    chebyshev_terms(d, v, w, tv);
+    wp[0] = 1.0;
+    for (int k = 0; k < d; ++k) wp[k + 1] = wp[k] * w;
+  }
+  double* tu;
+  double* tv;
+  double* wp;
+
+ private:
+  std::array<double, 3 * (kStackDegree + 1)> stack_;
+  std::vector<double> heap_;
+};
 
 }  // namespace
 
 void PlanePolynomial::homogeneous_terms(int degree, double u, double v, double w, std::span<double> out) {
   assert(out.size() >= static_cast<std::size_t>(size(degree)));
-  std::array<double, 3 * (kStackDegree + 1)> stack;
-  std::vector<double> heap(degree > kStackDegree ? 3 * static_cast<std::size_t>(degree + 1) : 0);
-  double* tu = degree > kStackDegree ? heap.data() : stack.data();
-  term_tables(degree, u, v, w, tu);
-  const double* tv = tu + degree + 1;
-  const double* wp = tv + degree + 1;
-  // W^(d - i - j) brings every term to degree d.
+  const TermTables t(degree, u, v, w);
   for (int k = 0; k <= degree; ++k)
-    for (int j = 0; j <= k; ++j) out[static_cast<std::size_t>(index(k - j, j))] = tu[k - j] * tv[j] * wp[degree - k];
+    for (int j = 0; j <= k; ++j)
+      out[static_cast<std::size_t>(index(k - j, j))] = t.tu[k - j] * t.tv[j] * t.wp[degree - k];
 }
 
 double PlanePolynomial::homogeneous(double u, double v, double w) const {
-  std::array<double, 3 * (kStackDegree + 1)> stack;
-  std::vector<double> heap(degree_ > kStackDegree ? 3 * static_cast<std::size_t>(degree_ + 1) : 0);
-  double* tu = degree_ > kStackDegree ? heap.data() : stack.data();
-  term_tables(degree_, u, v, w, tu);
-  const double* tv = tu + degree_ + 1;
-  const double* wp = tv + degree_ + 1;
+  const TermTables t(degree_, u, v, w);
   // sum_k w^(d-k) sum_j c_(k-j, j) T_(k-j)(u) T_j(v), in index() order.
   double sum = 0.0;
   std::size_t e = 0;
   for (int k = 0; k <= degree_; ++k) {
     double row = 0.0;
-    for (int j = 0; j <= k; ++j) row += coefficients_[e++] * tu[k - j] * tv[j];
-    sum += row * wp[degree_ - k];
+    for (int j = 0; j <= k; ++j) row += coefficients_[e++] * t.tu[k - j] * t.tv[j];
+    sum += row * t.wp[degree_ - k];
   }
   return sum;
 }
