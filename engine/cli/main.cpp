@@ -55,6 +55,7 @@ struct InvertArguments {
   double relative_tolerance = bezinv::kDefaultRelativeTolerance;
   bool no_refine = false;
   bool svd_only = false;
+  std::string algebraic = "bezout";
   int threads = 0;
   bool verbose = false;
   bezinv::CurveSelection selection;
@@ -184,6 +185,7 @@ int run_invert(const InvertArguments& arguments) {
   options.relative_tolerance = arguments.relative_tolerance;
   options.refine = !arguments.no_refine;
   options.fast_path = !arguments.svd_only;
+  options.algebraic = arguments.algebraic == "formula" ? bezinv::Algebraic::formula : bezinv::Algebraic::bezout;
   options.threads = arguments.threads;
 
   const auto reader = bezinv::open_points(arguments.points_path, curves, arguments.selection);
@@ -266,6 +268,11 @@ int main(int argc, char** argv) {
                    "Report the paper's algebraic t (no Newton refinement to the nearest point)");
   invert->add_flag("--svd-only", invert_arguments.svd_only,
                    "Answer every point by the SVD (exact sigma_min/sigma_next on every row; slower)");
+  invert->add_option("--algebraic", invert_arguments.algebraic,
+                     "The fast path's algebraic step: bezout (B's null vector) or formula (the curve's inversion "
+                     "formula N/M where it is valid, path formula)")
+      ->check(CLI::IsMember({"bezout", "formula"}))
+      ->capture_default_str();
   const CLI::Validator non_negative([](std::string& text) { return check_count(text, 0); }, "N>=0");
   const CLI::Validator positive([](std::string& text) { return check_count(text, 1); }, "N>=1");
   const std::string threads_help = "Worker threads (0: all cores; at most " + std::to_string(kMaxThreads) + ")";
@@ -314,6 +321,10 @@ int main(int argc, char** argv) {
   profile->add_flag("--no-refine", profile_no_refine, "Algebraic t only (no Newton refinement)");
   bool profile_svd_only = false;
   profile->add_flag("--svd-only", profile_svd_only, "Every point by the SVD (no LU fast path)");
+  std::string profile_algebraic = "bezout";
+  profile->add_option("--algebraic", profile_algebraic, "The fast path's algebraic step: bezout or formula")
+      ->check(CLI::IsMember({"bezout", "formula"}))
+      ->capture_default_str();
   profile->add_flag("--json", profile_options.json, "One JSON object on stdout");
 
   bezinv::cli::StressOptions stress_options;
@@ -398,6 +409,8 @@ int main(int argc, char** argv) {
       const ParallelismLimit parallelism(profile_options.threads);
       profile_options.refine = !profile_no_refine;
       profile_options.fast_path = !profile_svd_only;
+      profile_options.algebraic =
+          profile_algebraic == "formula" ? bezinv::Algebraic::formula : bezinv::Algebraic::bezout;
       profile_options.kind = profile_kind == "bezier"            ? bezinv::CurveKind::bezier
                              : profile_kind == "rational"        ? bezinv::CurveKind::rational
                                                                  : bezinv::CurveKind::rational_bezier;

@@ -74,6 +74,7 @@ int run_profile(const ProfileOptions& options) {
   InvertOptions invert_options;
   invert_options.refine = options.refine;
   invert_options.fast_path = options.fast_path;
+  invert_options.algebraic = options.algebraic;
   invert_options.threads = options.threads;
 
   std::vector<std::vector<PointResult>> results(w.plans.size());
@@ -99,8 +100,8 @@ int run_profile(const ProfileOptions& options) {
     for (std::size_t i = 0; i < results[c].size(); ++i, ++total) {
       const PointResult& r = results[c][i];
       ok += r.status == Status::ok;
-      fast += r.path == Path::bezout_lu;
-      certified += r.path == Path::bezout_lu && std::isnan(r.sigma_next);  // the isolation certificate's rows
+      fast += r.path == Path::bezout_lu || r.path == Path::formula;
+      certified += (r.path == Path::bezout_lu || r.path == Path::formula) && std::isnan(r.sigma_next);  // the isolation certificate's rows
       by_distance += r.path == Path::nearest && std::isnan(r.sigma_min);    // the off-curve path's rows
       if (r.status == Status::ok) max_dt = std::max(max_dt, std::abs(r.t - w.t_true[c][i]));
     }

@@ -3,6 +3,7 @@
 #include <cstddef>
 
 #include "bezinv/curve.hpp"
+#include "bezinv/invert.hpp"
 
 namespace bezinv::cli {
 
@@ -15,6 +16,7 @@ struct ProfileOptions {
   double noise = 0.0;     // points moved off the curve by up to noise x the curve's diagonal
   bool refine = true;
   bool fast_path = true;
+  Algebraic algebraic = Algebraic::bezout;
   bool json = false;
   unsigned long long seed = 20261122;
 };

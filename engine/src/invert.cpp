@@ -31,6 +31,7 @@ const char* to_string(Path path) {
     case Path::sylvester: return "sylvester";
     case Path::nearest: return "nearest";
     case Path::bezout_lu: return "bezout_lu";
+    case Path::formula: return "formula";
   }
   return "?";
 }

@@ -43,21 +43,34 @@ struct OffCurveData {
   std::vector<double> extension_h, extension_scale, extension_boxes, extension_far2;
 };
 
+// The inversion formula as the formula path evaluates it (engine/src/pipeline/formula_path.hpp):
+// t = N / M with N, M sums of c_ij T_i(a) T_j(b), i + j <= degree, in the coordinates of the
+// formula's frame, a = (u - centre_u) / half_u, b = (v - centre_v) / half_v from the plan's
+// normalized (u, v) (bezinv/inversion_formula.hpp). `usable` only where the formula exists and is
+// accurate on the segment (kFormulaPathMaxSegmentError).
+struct FormulaPathData {
+  bool usable = false;
+  int degree = 0;
+  double centre_u = 0.0, centre_v = 0.0, inverse_half_u = 1.0, inverse_half_v = 1.0;
+  std::vector<double> n, m;  // PlanePolynomial::index order
+};
+
 // Made once, by whichever thread first asks (the plan is shared const between threads). A copy of
 // a plan starts empty and makes its own: the copy may be changed before its first use.
-class LazyOffCurveData {
+template <class Data>
+class Lazy {
  public:
-  LazyOffCurveData() = default;
-  LazyOffCurveData(const LazyOffCurveData&) : LazyOffCurveData() {}
-  LazyOffCurveData& operator=(const LazyOffCurveData&) {
+  Lazy() = default;
+  Lazy(const Lazy&) : Lazy() {}
+  Lazy& operator=(const Lazy&) {
     slot_ = std::make_unique<Slot>();
     return *this;
   }
-  LazyOffCurveData(LazyOffCurveData&&) noexcept = default;
-  LazyOffCurveData& operator=(LazyOffCurveData&&) noexcept = default;
+  Lazy(Lazy&&) noexcept = default;
+  Lazy& operator=(Lazy&&) noexcept = default;
 
   template <class Make>
-  const OffCurveData& get(Make&& make) const {
+  const Data& get(Make&& make) const {
     std::call_once(slot_->once, [&] { make(slot_->data); });
     return slot_->data;
   }
@@ -65,7 +78,7 @@ class LazyOffCurveData {
  private:
   struct Slot {
     std::once_flag once;
-    OffCurveData data;
+    Data data;
   };
   std::unique_ptr<Slot> slot_ = std::make_unique<Slot>();
 };
@@ -119,7 +132,9 @@ struct PlanData {
   std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique;
 
   // What only answers off the curve use, built by the first point that asks (off_curve_data).
-  LazyOffCurveData off_curve;
+  Lazy<OffCurveData> off_curve;
+  // The formula path's formula, made by the first batch that takes the path (formula_path_data).
+  Lazy<FormulaPathData> formula_path;
 
   // Power-basis leading coefficients of the four polynomials and their size bounds, for
   // detecting a degree drop of p and q at a given point (paper Sect. 4).
@@ -163,5 +178,8 @@ void bezout_at(const PlanData& plan, double u0, double v0, std::span<double> out
 // The plan's OffCurveData, made on the first call (stationary_pieces, extension_pieces); safe to
 // call from any number of threads at once.
 const OffCurveData& off_curve_data(const PlanData& plan);
+
+// The plan's formula for the formula path (made on first use; usable false where there is none).
+const FormulaPathData& formula_path_data(const PlanData& plan);
 
 }  // namespace bezinv::detail

@@ -619,6 +619,75 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
   EXPECT_GT(near_crossing_double, near_crossing / 2) << near_crossing_double << " of " << near_crossing;
 }
 
+// The formula path (InvertOptions::algebraic = formula): the inversion formula's N/M in place of
+// B's null vector as the start, refined and certified the same way. Batched, on the same rows as
+// FastPathAgreesWithTheSvdPath: the same status as the Bezout path on every row, t (and t2) within
+// the accuracy bound, and the formula answering most on-curve rows of the degrees it covers.
+TEST(InvertProperty, TheFormulaPathAnswersAsTheBezoutPath) {
+  const InvertOptions bezout_options{};
+  const InvertOptions formula_options{.algebraic = Algebraic::formula};
+  std::size_t rows = 0, formula_rows = 0;
+  auto compare = [&](const Case& c, const std::vector<KnownPoint>& known) {
+    std::vector<Point> points;
+    for (const KnownPoint& k : known) points.push_back(k.point);
+    std::vector<PointResult> bezout(points.size()), formula(points.size());
+    invert(c.plan, points, bezout, bezout_options);
+    invert(c.plan, points, formula, formula_options);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const KnownPoint& k = known[i];
+      ++rows;
+      formula_rows += formula[i].path == Path::formula;
+      ASSERT_EQ(formula[i].status, bezout[i].status)
+          << "formula: " << describe(c, k, formula[i]) << "\nbezout: " << describe(c, k, bezout[i]);
+      if (formula[i].path != Path::formula && formula[i].path != Path::bezout_lu &&
+          bezout[i].path != Path::bezout_lu && !(formula[i].path == Path::nearest))
+        continue;  // both by the SVD path from the same start: compared below anyway
+      if (std::isnan(bezout[i].t)) {
+        EXPECT_TRUE(std::isnan(formula[i].t)) << describe(c, k, formula[i]);
+        continue;
+      }
+      const double bound = formula[i].status == Status::off_curve ? 1e-6 : 2 * parameter_bound(c, k);
+      EXPECT_LE(std::abs(formula[i].t - bezout[i].t), bound)
+          << "formula: " << describe(c, k, formula[i]) << "\nbezout: " << describe(c, k, bezout[i]);
+      if (formula[i].status == Status::double_point) {
+        EXPECT_LE(std::abs(formula[i].t2 - bezout[i].t2), bound) << describe(c, k, formula[i]);
+      }
+      if (formula[i].path == Path::formula) {
+        EXPECT_EQ(formula[i].status, Status::ok) << describe(c, k, formula[i]);
+        EXPECT_TRUE(std::isnan(formula[i].sigma_min)) << describe(c, k, formula[i]);  // no B formed
+      }
+    }
+  };
+  // Making a formula costs ~1 ms at degree 8 and ~80 ms at 20 (its SVD; seconds unoptimized under
+  // the sanitizers): degrees up to 12 here (separate denominators, of twice the degree, up to 6),
+  // up to 8 (4) under the sanitizers.
+  const int max_degree = test_support::kSanitizerThinning > 1 ? 8 : 12;
+  auto covered = [&](CurveKind kind, int degree) {
+    return degree <= (kind == CurveKind::rational ? max_degree / 2 : max_degree);
+  };
+  for (const Case& c : random_cases()) {
+    if (!covered(c.plan.curve().kind, c.degree)) continue;
+    std::mt19937_64 rng(c.seed + 8);
+    std::vector<KnownPoint> points = datasets::segment_points(*c.sampling, 24, rng);
+    for (const auto& set : {datasets::end_points(*c.sampling), datasets::extension_points(*c.sampling, 6, rng),
+                            datasets::normal_offset_points(*c.sampling, 6, 1e-7, 0.1, rng)})
+      points.insert(points.end(), set.begin(), set.end());
+    compare(c, points);
+  }
+  for (CurveKind kind : kAllKinds)
+    for (int degree = 3; degree <= 12; ++degree) {
+      if (!covered(kind, degree)) continue;
+      const std::uint64_t seed = seed_of(kind, degree, ControlPolygon::unit_square, 9);
+      std::mt19937_64 rng(seed);
+      const double t1 = datasets::uniform(rng, 0.05, 0.45), t2 = datasets::uniform(rng, 0.55, 0.95);
+      Case c = make_case(case_name(kind, degree, ControlPolygon::unit_square, seed) + " crossing",
+                         datasets::with_self_intersection(kind, degree, t1, t2, rng), seed);
+      compare(c, datasets::crossing_points(*c.sampling, t1, t2, 4, 0.3 * kDefaultRelativeTolerance, rng));
+    }
+  std::printf("[ measured ] the formula path answered %zu of %zu rows\n", formula_rows, rows);
+  EXPECT_GT(formula_rows, rows / 5);  // not vacuous
+}
+
 // Off the curve, anywhere around curves that loop: the off-curve path answers without the SVD only
 // what the SVD path answers, off_curve at the same nearest point of the segment. Points off a
 // random t along the normal, up to a tenth of the curve's size: on these loops many have another

@@ -47,6 +47,8 @@ class InversionFormula {
   // formula: report the smallest singular value's ratio), its degree n is past
   // kMaxFormulaCurveDegree, or a base point asked for is not a valid choice.
   InversionFormula(const InversionPlan& plan, const FormulaChoice& choice = {});
+  // The same from a plan's data (the engine's formula path, which has no InversionPlan).
+  InversionFormula(const detail::PlanData& data, const FormulaChoice& choice);
 
   int curve_degree() const { return curve_degree_; }  // n (2 x the plan's degree for separate denominators)
   int degree() const { return numerator_.degree(); }  // d

@@ -31,8 +31,16 @@ enum class Path : std::uint8_t {
   nearest,      // nearest-point search on the segment (point off the curve)
   bezout_lu,    // null vector of the Bezout matrix by LU and inverse iteration (the fast path; sigma_min
                 // and sigma_next are then the kernel's estimates relative to ||B||_F, see kernels/batch.hpp).
-                // Last, so the codes of the .npy results file stay as they were.
+  formula,      // the curve's inversion formula N/M (bezinv/inversion_formula.hpp), refined and certified
+                // as on the fast path; no B was formed: sigma_min and sigma_next are NaN.
+                // New paths go last, so the codes of the .npy results file stay as they were.
 };
+
+// The algebraic step of the fast path: the null vector of B (the paper's), or the curve's inversion
+// formula t = N(x, y) / M(x, y) where it is valid at the point (Wang & Joe; the Bezout path where
+// it is not, near its base points). Either start is refined and certified the same way, so the
+// statuses are the same; t agrees to the accuracy bound. Used only with refine and the fast path.
+enum class Algebraic : std::uint8_t { bezout, formula };
 const char* to_string(Path path);
 
 struct PointResult {
@@ -55,6 +63,7 @@ struct InvertOptions {
   // estimated); false: every point by the SVD (exact singular values on every row, slower).
   // Used only with refine: the unrefined output is the paper's algebraic t, from the SVD.
   bool fast_path = true;
+  Algebraic algebraic = Algebraic::bezout;
 };
 
 struct Point { double x, y; };

@@ -143,6 +143,20 @@ inline constexpr double kFormulaNullRatio = 1e-8;
 // singular value below this times the largest (two coinciding base points make one ~0).
 inline constexpr double kFormulaChoiceRatio = 1e-8;
 
+// The formula path (engine/src/pipeline/formula_path.hpp): a plan's formula is used only where it
+// is this accurate on the segment (InversionFormula::segment_error: a start Newton's method
+// finishes in one or two steps), at a point only where |M| is at least kFormulaPathMinDenominator
+// of the size of M's terms there (N/M then keeps ~10 digits; nearer the formula's base points, a
+// double point or a cusp, the Bezout path), and within kFormulaPathMaxCoordinate of the curve in
+// normalized units (farther points form B, whose overflow decides them far points).
+inline constexpr double kFormulaPathMaxSegmentError = 1e-8;
+inline constexpr double kFormulaPathMinDenominator = 1e-6;
+inline constexpr double kFormulaPathMaxCoordinate = 1e6;
+// Degrees at which the formula path is taken when asked for (the formula's: twice the curve's with
+// separate denominators): the formula costs ~10 us to make at degree 3, ~80 ms at 20 (per plan,
+// once), and more above.
+inline constexpr int kFormulaPathMaxDegree = 20;
+
 // ---- Curves refused ----------------------------------------------------------------------------
 
 // A denominator has a root on [0, 1] (validate() refuses the curve) when subdivision cannot bound

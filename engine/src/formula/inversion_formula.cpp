@@ -36,8 +36,10 @@ int solution_dimension(int n) {
 
 }  // namespace
 
-InversionFormula::InversionFormula(const InversionPlan& plan, const FormulaChoice& choice) {
-  const detail::PlanData& data = detail::plan_data(plan);
+InversionFormula::InversionFormula(const InversionPlan& plan, const FormulaChoice& choice)
+    : InversionFormula(detail::plan_data(plan), choice) {}
+
+InversionFormula::InversionFormula(const detail::PlanData& data, const FormulaChoice& choice) {
   if (!data.usable) throw FormulaError(std::string("no inversion formula: ") + data.reason);
   const detail::FrameCurve framed = detail::formula_curve(data);
   const HomogeneousCurve& curve = framed.curve;

@@ -23,7 +23,7 @@ void invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
   StageClock clock(stages);
 
   const bool fast = takes_fast_path(plan, options);
-  const bool formed_b = forms_b_in_seed(plan, options);
+  const bool formed_b = forms_b_late(plan, options);
   form_batch(plan, points, results, count, /*form=*/n >= 2 && !formed_b, w);
   clock.lap(&StageSeconds::form_b);
 

@@ -99,11 +99,11 @@ bool admit(const PlanData& plan, const Point& point, double u, double v, PointRe
 }
 
 void answer_fast(const PlanData& plan, double t, double distance, double sigma_min, double sigma_next,
-                 PointResult& r) {
+                 PointResult& r, Path path) {
   r.t = t;
   r.residual = distance * plan.scale;
   r.status = Status::ok;
-  r.path = Path::bezout_lu;
+  r.path = path;
   r.sigma_min = sigma_min;
   r.sigma_next = sigma_next;
 }

@@ -23,9 +23,10 @@ namespace bezinv::detail {
 // the pipeline; otherwise r holds its answer.
 bool admit(const PlanData& plan, const Point& point, double u, double v, PointResult& r);
 
-// The fast path's answer: status ok, path bezout_lu, the sigma columns from the kernel's estimates.
+// The fast path's answer: status ok, path bezout_lu (or formula: the start was the formula's), the
+// sigma columns from the kernel's estimates (NaN on the formula path).
 void answer_fast(const PlanData& plan, double t, double distance, double sigma_min, double sigma_next,
-                 PointResult& r);
+                 PointResult& r, Path path = Path::bezout_lu);
 
 // The fast path's decision for lane l, refined to c, with the kernel's gap: answered here (ok),
 // after the second-parameter check, or left active (off the segment: to the off-curve path; else

@@ -10,6 +10,7 @@
 #include "pipeline/candidate.hpp"
 #include "pipeline/decide.hpp"
 #include "pipeline/form_b.hpp"
+#include "pipeline/formula_path.hpp"
 #include "refine.hpp"
 
 namespace bezinv::detail {
@@ -57,7 +58,11 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
   const bool formed_b = forms_b_in_seed(plan, options);
   const kernels::Implementation& kernel = kernels::active_implementation();
   const bool two_passes = n >= 3;
-  if (formed_b) {
+  const bool formula = takes_formula_path(plan, options);
+  if (formula) {
+    formula_or_seed(plan, points, results, count, w);
+    clock.lap(&StageSeconds::kernel);
+  } else if (formed_b) {
     std::array<double, kBatchLanes> poison;
     kernel.bezout_null_vector_seed(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                    bilinear_coefficients(plan), w.u.data(), w.v.data(), w.z.data(), w.defect.data(),
@@ -69,8 +74,12 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
     kernel.null_vector(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),
                        w.second.data());
   }
-  clock.lap(&StageSeconds::kernel);
-  kernel.bernstein_parameter(n, count, stride, w.z.data(), w.t_algebraic.data());
+  if (!formula) {
+    clock.lap(&StageSeconds::kernel);
+    kernel.bernstein_parameter(n, count, stride, w.z.data(), w.t_algebraic.data());
+  }
+  // Where the formula gave t, the lane's path says so.
+  auto path_of = [&](std::size_t l) { return formula && w.from_formula[l] ? Path::formula : Path::bezout_lu; };
   for (std::size_t l = 0; l < count; ++l)
     if (!w.active[l] || !(w.defect[l] <= kFastPathMaxDefect) ||
         (!two_passes && !(w.estimate[stride + l] >= kFastPathMinGap)))
@@ -95,7 +104,7 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
       if (w.certified[l] && w.active[l] && !w.drops[l] && std::isfinite(w.t_algebraic[l]) &&
           w.distance[l] <= tolerance) {
         w.active[l] = 0;
-        answer_fast(plan, w.t_refined[l], w.distance[l], w.estimate[l], PointResult::nan, results[l]);
+        answer_fast(plan, w.t_refined[l], w.distance[l], w.estimate[l], PointResult::nan, results[l], path_of(l));
       }
   }
   std::size_t waiting = 0;  // lanes of pass 2
@@ -112,10 +121,10 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
         c = Candidate{};
         c.t = w.t_refined[l];
         c.distance = w.distance[l];
-        c.path = Path::bezout_lu;
+        c.path = path_of(l);
         classify(c, tolerance);
       } else {
-        c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], Path::bezout_lu, tolerance, true);
+        c = settle(plan, w.u[l], w.v[l], w.t_algebraic[l], path_of(l), tolerance, true);
       }
     }
     if (!two_passes) {
@@ -125,7 +134,7 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
     if (!refined) continue;  // z did not settle: the SVD path
     if (c.on_segment && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance)) {
       w.active[l] = 0;
-      answer_fast(plan, c.t, c.distance, w.estimate[l], PointResult::nan, results[l]);
+      answer_fast(plan, c.t, c.distance, w.estimate[l], PointResult::nan, results[l], path_of(l));
     } else if (c.on_segment) {
       w.gap_lane_of[waiting++] = static_cast<std::uint8_t>(l);
     }  // off the curve: the off-curve path, then (if it cannot prove its answer) the SVD path

@@ -35,6 +35,10 @@ inline bool forms_b_in_seed(const PlanData& plan, const InvertOptions& options) 
   return takes_fast_path(plan, options) && plan.degree >= kFormedBMinDegree;
 }
 
+// Whether stage 1 leaves the batch's B unformed: the seed forms it, or the formula path needs it
+// for few lanes (formula_path.hpp). The lanes that reach the SVD path then form theirs.
+bool forms_b_late(const PlanData& plan, const InvertOptions& options);
+
 // Stages 2-4 (and the decisions they allow) for the batch's active lanes.
 void fast_path(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                const InvertOptions& options, BatchWorkspace& w, StageClock& clock);

@@ -36,6 +36,8 @@ struct BatchWorkspace {
   std::vector<double> second = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
   std::array<double, kBatchLanes> defect;
   std::array<double, 2 * kBatchLanes> estimate;
+  // The formula path (formula_path.hpp): the lane's t_algebraic is the formula's, not the seed's.
+  std::array<std::uint8_t, kBatchLanes> from_formula;
   // The gap pass (fast_path.cpp): its lanes compacted, gap lane k being batch lane gap_lane_of[k],
   // and the full kernel's outputs for them before they go back to their lanes.
   std::vector<double> gap_B = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);

@@ -1,0 +1,134 @@
+#include "pipeline/formula_path.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "bezinv/inversion_formula.hpp"
+#include "bezinv/kernels/batch.hpp"
+#include "pipeline/fast_path.hpp"
+#include "pipeline/form_b.hpp"
+
+namespace bezinv::detail {
+
+const FormulaPathData& formula_path_data(const PlanData& plan) {
+  return plan.formula_path.get([&](FormulaPathData& data) {
+    // The curve's degree as the formula sees it: twice the plan's with separate denominators.
+    const int degree = plan.common_denominator ? plan.degree : 2 * plan.degree;
+    if (!plan.usable || plan.straight_line || plan.degree < 3 || degree > kFormulaPathMaxDegree) return;
+    try {
+      const InversionFormula formula(plan, FormulaChoice{});
+      if (!(formula.segment_error() <= kFormulaPathMaxSegmentError)) return;
+      // The formula's frame is the plan's normalization followed by a shift and a scale per axis:
+      // its centre and scales, in the plan's normalized units.
+      const PlaneFrame& frame = formula.numerator().frame();
+      const auto centre = plan.normalize(frame.centre[0], frame.centre[1]);
+      data.centre_u = centre[0];
+      data.centre_v = centre[1];
+      data.inverse_half_u = 1.0 / (frame.scale_u * plan.inverse_scale);
+      data.inverse_half_v = 1.0 / (frame.scale_v * plan.inverse_scale);
+      data.degree = formula.degree();
+      data.n.assign(formula.numerator().coefficients().begin(), formula.numerator().coefficients().end());
+      data.m.assign(formula.denominator().coefficients().begin(), formula.denominator().coefficients().end());
+      data.usable = true;
+    } catch (const FormulaError&) {
+      // No formula (a curve traced more than once, ...): the plan keeps the Bezout path.
+    }
+  });
+}
+
+bool takes_formula_path(const PlanData& plan, const InvertOptions& options) {
+  return options.algebraic == Algebraic::formula && takes_fast_path(plan, options) && plan.degree >= 3 &&
+         formula_path_data(plan).usable;
+}
+
+bool forms_b_late(const PlanData& plan, const InvertOptions& options) {
+  return forms_b_in_seed(plan, options) || takes_formula_path(plan, options);
+}
+
+namespace {
+
+// N/M at the plan-normalized point (u, v), or NaN where the formula is not used there: M within
+// kFormulaPathMinDenominator of the size of its terms (a base point near), or the point farther
+// than kFormulaPathMaxCoordinate.
+double formula_parameter(const FormulaPathData& f, double u, double v) {
+  if (!(std::abs(u) <= kFormulaPathMaxCoordinate && std::abs(v) <= kFormulaPathMaxCoordinate))
+    return PointResult::nan;
+  const double a = (u - f.centre_u) * f.inverse_half_u, b = (v - f.centre_v) * f.inverse_half_v;
+  double numerator = 0.0, denominator = 0.0, size = 0.0;
+  if (f.degree == 1) {  // degrees 3 (and 2): linear over linear
+    numerator = f.n[0] + f.n[1] * a + f.n[2] * b;
+    denominator = f.m[0] + f.m[1] * a + f.m[2] * b;
+    size = std::abs(f.m[0]) + std::abs(f.m[1] * a) + std::abs(f.m[2] * b);
+  } else {
+    // sum_{i + j <= d} c_ij T_i(a) T_j(b), in PlanePolynomial::index order.
+    std::array<double, kMaxDegree + 1> ta, tb;
+    ta[0] = tb[0] = 1.0;
+    ta[1] = a;
+    tb[1] = b;
+    for (int k = 1; k < f.degree; ++k) {
+      ta[k + 1] = 2.0 * a * ta[k] - ta[k - 1];
+      tb[k + 1] = 2.0 * b * tb[k] - tb[k - 1];
+    }
+    std::size_t e = 0;
+    for (int k = 0; k <= f.degree; ++k)
+      for (int j = 0; j <= k; ++j, ++e) {
+        const double term = ta[k - j] * tb[j];
+        numerator += f.n[e] * term;
+        denominator += f.m[e] * term;
+        size += std::abs(f.m[e] * term);
+      }
+  }
+  if (!(std::abs(denominator) >= kFormulaPathMinDenominator * size)) return PointResult::nan;
+  return numerator / denominator;
+}
+
+}  // namespace
+
+void formula_or_seed(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+                     BatchWorkspace& w) {
+  const FormulaPathData& f = formula_path_data(plan);
+  const int n = plan.degree;
+  const std::size_t stride = kBatchLanes;
+  std::size_t seeded = 0;
+  for (std::size_t l = 0; l < count; ++l) {
+    w.from_formula[l] = 0;
+    if (!w.active[l]) continue;  // the fast path leaves an inactive lane alone
+    const double t = formula_parameter(f, w.u[l], w.v[l]);
+    if (std::isfinite(t)) {
+      w.t_algebraic[l] = t;
+      w.defect[l] = 0.0;
+      w.estimate[l] = PointResult::nan;  // no B: no sigma_min estimate
+      w.from_formula[l] = 1;
+    } else {
+      w.gap_lane_of[seeded++] = static_cast<std::uint8_t>(l);
+    }
+  }
+  if (seeded == 0) return;
+  // The other lanes: the fast path's seed on their B, formed here (compacted), its overflow
+  // checked as stage 1 checks it.
+  std::array<double, kBatchLanes> u, v, poison, t;
+  for (std::size_t k = 0; k < seeded; ++k) u[k] = w.u[w.gap_lane_of[k]], v[k] = w.v[w.gap_lane_of[k]];
+  const kernels::Implementation& kernel = kernels::active_implementation();
+  if (n >= kFormedBMinDegree) {
+    kernel.bezout_null_vector_seed(n, seeded, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
+                                   bilinear_coefficients(plan), u.data(), v.data(), w.gap_z.data(),
+                                   w.gap_defect.data(), w.gap_estimate.data(), poison.data());
+  } else {
+    kernel.bezout_matrix(n, seeded, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
+                         bilinear_coefficients(plan), u.data(), v.data(), w.gap_B.data(), poison.data());
+    kernel.null_vector_seed(n, seeded, stride, w.gap_B.data(), w.gap_z.data(), w.gap_defect.data(),
+                            w.gap_estimate.data());
+  }
+  kernel.bernstein_parameter(n, seeded, stride, w.gap_z.data(), t.data());
+  std::array<double, kBatchLanes> lane_poison{};
+  for (std::size_t k = 0; k < seeded; ++k) {
+    const std::size_t l = w.gap_lane_of[k];
+    w.t_algebraic[l] = t[k];
+    w.defect[l] = w.gap_defect[k];
+    w.estimate[l] = w.gap_estimate[k];
+    lane_poison[l] = poison[k];
+  }
+  mark_overflowing_b(plan, points, lane_poison.data(), count, w, results);
+}
+
+}  // namespace bezinv::detail

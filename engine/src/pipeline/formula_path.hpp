@@ -1,0 +1,25 @@
+#pragma once
+// The formula path: the fast path's algebraic step by the curve's inversion formula t = N/M
+// (Wang & Joe, bezinv/inversion_formula.hpp) instead of B's null vector. Where the formula is valid
+// at a lane's point, t_algebraic = N/M and no B is formed; the other lanes (near the formula's base
+// points, far from the curve) get the seed as on the fast path. From there every lane goes on as
+// there: refinement, the isolation certificate, the gap pass, the SVD path.
+#include <cstddef>
+
+#include "bezinv/invert.hpp"
+#include "plan_data.hpp"
+#include "pipeline/workspace.hpp"
+
+namespace bezinv::detail {
+
+// Whether a batch of this plan takes the formula path (with the fast path, degrees 3 ..
+// kFormulaPathMaxDegree, where the plan's formula exists and is accurate on the segment).
+bool takes_formula_path(const PlanData& plan, const InvertOptions& options);
+
+// The algebraic step of the fast path for every active lane: t_algebraic, defect and the sigma_min
+// estimate (NaN on formula lanes), from_formula. The seed's lanes have their B formed here; a lane
+// whose B overflows is answered as a far point.
+void formula_or_seed(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+                     BatchWorkspace& w);
+
+}  // namespace bezinv::detail
