@@ -27,6 +27,7 @@
 #include "bezinv/io.hpp"
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
+#include "convert.hpp"
 #include "demo.hpp"
 #include "formula.hpp"
 #include "profile.hpp"
@@ -359,6 +360,12 @@ int main(int argc, char** argv) {
   stress->add_option("--report", stress_options.report_directory,
                      "Write DIR/index.html (one page, no script), DIR/summary.json and reproducers in DIR/repro");
 
+  std::string convert_curves, convert_out;
+  CLI::App* convert = app.add_subcommand(
+      "convert", "Write CURVES.json with every matrix-weighted curve as an ordinary rational Bezier curve");
+  convert->add_option("--curves", convert_curves, "CURVES.json")->required();
+  convert->add_option("--out", convert_out, "The converted CURVES.json")->required();
+
   bezinv::cli::FormulaOptions formula_options;
   std::string formula_base;
   CLI::App* formula = app.add_subcommand(
@@ -386,6 +393,16 @@ int main(int argc, char** argv) {
       std::tie(stress_options.min_degree, stress_options.max_degree) = bezinv::cli::parse_degrees(stress_degrees);
       stress_options.baselines = bezinv::cli::parse_baselines(stress_baselines);
       return bezinv::cli::run_stress(stress_options);
+    }
+    if (convert->parsed()) {
+      struct stat in {}, out {};
+      if (::stat(convert_curves.c_str(), &in) == 0 && ::stat(convert_out.c_str(), &out) == 0 &&
+          !S_ISCHR(out.st_mode) && in.st_dev == out.st_dev && in.st_ino == out.st_ino)
+        throw bezinv::InputError(convert_out + ": --out is the same file as --curves " + convert_curves +
+                                 "; refusing to overwrite an input");
+      check_output_directory(convert_out);
+      bezinv::remove_temporary_outputs_on_signals();
+      return bezinv::cli::run_convert(convert_curves, convert_out);
     }
     if (formula->parsed()) {
       formula_options.base_parameters = bezinv::cli::parse_base_parameters(formula_base);

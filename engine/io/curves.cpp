@@ -240,7 +240,8 @@ std::vector<std::array<double, 2>> point_list(const json& curve, const std::stri
 // Every field a curve may have, by kind. Any other field is refused rather than ignored: a typo
 // ("weight") or a field of another kind (weights on a polynomial "bezier") would otherwise change
 // nothing and go unnoticed.
-constexpr const char* kAllCurveFields[] = {"id", "kind", "points", "weights", "x_num", "x_den", "y_num", "y_den"};
+constexpr const char* kAllCurveFields[] = {"id",       "kind",   "points", "weights", "x_num", "x_den", "y_num",
+                                           "y_den",    "matrices", "normals", "tangents", "omegas", "mus"};
 
 void refuse_other_fields(const json& curve, std::initializer_list<const char*> fields, const char* kind,
                          const std::string& where) {
@@ -264,6 +265,90 @@ bool id_fits_points_csv(const std::string& id) {
     return false;
   const auto is_space = [](char c) { return c == ' ' || c == '\t'; };
   return !is_space(id.front()) && !is_space(id.back());
+}
+
+// A list of d-vectors (points, normals, tangents): `dimension` 0 takes it from the first entry
+// (2 or 3), else each must have that many coordinates.
+std::vector<Vector3> vector_list(const json& curve, const char* field, int& dimension, const std::string& where) {
+  const json& list = required_field(curve, field, where);
+  if (!list.is_array()) fail(where, std::string(field) + ": expected an array of [x, y] or [x, y, z], found " + a_type_name(list));
+  if (list.empty()) fail(where, std::string(field) + ": empty list");
+  std::vector<Vector3> out;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string name = std::string(field) + "[" + std::to_string(i) + "]";
+    const json& v = list[i];
+    if (!v.is_array() || (v.size() != 2 && v.size() != 3))
+      fail(where, name + ": expected [x, y] or [x, y, z], found " + (v.is_array() ? "an array of " + std::to_string(v.size()) : a_type_name(v)));
+    if (dimension == 0) dimension = static_cast<int>(v.size());
+    if (static_cast<int>(v.size()) != dimension)
+      fail(where, name + ": " + std::to_string(v.size()) + " coordinates, but the curve is " + std::to_string(dimension) + "D");
+    Vector3 e{};
+    for (std::size_t c = 0; c < v.size(); ++c) e[c] = number(v[c], where, name + "[" + std::to_string(c) + "]");
+    out.push_back(e);
+  }
+  return out;
+}
+
+// {"kind": "matrix_weighted_bezier", "points": [...], and one of "matrices"; "normals", "omegas",
+// "mus"; "tangents", "omegas", "mus"}: the curve as written (bezinv/matrix_weighted.hpp).
+MatrixWeightedCurve parse_matrix_weighted(const json& entry, std::string id, const std::string& where) {
+  MatrixWeightedCurve c;
+  c.id = std::move(id);
+  c.dimension = 0;  // from the points
+  c.points = vector_list(entry, "points", c.dimension, where);
+  const std::size_t count = c.points.size();
+  const int d = c.dimension;
+  auto same_count = [&](const char* field, std::size_t size) {
+    if (size != count)
+      fail(where, std::string(field) + ": " + std::to_string(size) + " for " + std::to_string(count) +
+                      " points (need one per point)");
+  };
+  const bool has_matrices = entry.contains("matrices"), has_normals = entry.contains("normals"),
+             has_tangents = entry.contains("tangents");
+  if (has_matrices + has_normals + has_tangents != 1)
+    fail(where, "exactly one of matrices, normals (with omegas and mus) or tangents (with omegas and mus) is needed");
+  if (has_matrices) {
+    refuse_other_fields(entry, {"id", "kind", "points", "matrices"}, "matrix_weighted_bezier", where);
+    const json& list = entry["matrices"];
+    if (!list.is_array()) fail(where, "matrices: expected an array of matrices, found " + a_type_name(list));
+    same_count("matrices", list.size());
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string name = "matrices[" + std::to_string(i) + "]";
+      const json& m = list[i];
+      if (!m.is_array() || static_cast<int>(m.size()) != d)
+        fail(where, name + ": expected a " + std::to_string(d) + " x " + std::to_string(d) + " matrix (the points are " +
+                        std::to_string(d) + "D)");
+      Matrix3 out{};
+      for (int r = 0; r < d; ++r) {
+        const json& row = m[static_cast<std::size_t>(r)];
+        if (!row.is_array() || static_cast<int>(row.size()) != d)
+          fail(where, name + "[" + std::to_string(r) + "]: expected a row of " + std::to_string(d) + " numbers");
+        for (int col = 0; col < d; ++col)
+          out[static_cast<std::size_t>(3 * r + col)] =
+              number(row[static_cast<std::size_t>(col)], where, name + "[" + std::to_string(r) + "][" + std::to_string(col) + "]");
+      }
+      c.matrices.push_back(out);
+    }
+    return c;
+  }
+  const char* vectors = has_normals ? "normals" : "tangents";
+  refuse_other_fields(entry, {"id", "kind", "points", vectors, "omegas", "mus"}, "matrix_weighted_bezier", where);
+  int vector_dimension = d;
+  const std::vector<Vector3> v = vector_list(entry, vectors, vector_dimension, where);
+  const std::vector<double> omegas = number_list(entry, "omegas", where), mus = number_list(entry, "mus", where);
+  same_count(vectors, v.size());
+  same_count("omegas", omegas.size());
+  same_count("mus", mus.size());
+  for (std::size_t i = 0; i < count; ++i) {
+    try {
+      c.matrices.push_back(has_normals ? normal_weight(d, v[i], omegas[i], mus[i], "")
+                                       : tangent_weight(d, v[i], omegas[i], mus[i], ""));
+    } catch (const CurveError& e) {
+      fail(where, std::string(vectors) + "[" + std::to_string(i) + "], omegas[" + std::to_string(i) + "], mus[" +
+                      std::to_string(i) + "]" + e.what());
+    }
+  }
+  return c;
 }
 
 Curve parse_curve(const json& entry, std::string& where) {
@@ -316,22 +401,38 @@ Curve parse_curve(const json& entry, std::string& where) {
                         std::to_string(x_num.size()) + " (the four lists need one common degree)");
     return Curve::rational(std::move(id), std::move(x_num), std::move(x_den), std::move(y_num), std::move(y_den));
   }
-  fail(where, "kind: unknown " + quoted_excerpt(kind) + " (expected bezier, rational_bezier or rational)");
+  if (kind == "matrix_weighted_bezier") {
+    const MatrixWeightedCurve m = parse_matrix_weighted(entry, id, where);
+    if (m.dimension != 2)
+      fail(where, "a space curve (3D points): bezinv inverts plane curves only; `bezinv convert` converts it");
+    try {
+      return plane_curve(convert(m), std::move(id));
+    } catch (const CurveError& e) {
+      std::string_view message(e.what());
+      const std::string own_prefix = "curve " + quoted_excerpt(m.id) + ": ";
+      if (message.starts_with(own_prefix)) message.remove_prefix(own_prefix.size());
+      fail(where, std::string(message));
+    }
+  }
+  fail(where, "kind: unknown " + quoted_excerpt(kind) +
+                  " (expected bezier, rational_bezier, rational or matrix_weighted_bezier)");
 }
 
 }  // namespace
 
-std::vector<Curve> read_curves_json(const std::string& path) {
-  const std::string text = detail::read_whole_file(path, kMaxCurvesBytes, "CURVES.json");
+namespace {
 
+// The file parsed (the SAX builder knows the path of every value, for messages) and its
+// "curves" list checked.
+json parse_curves_file(const std::string& path) {
+  const std::string text = detail::read_whole_file(path, kMaxCurvesBytes, "CURVES.json");
   LocatingBuilder builder(text);
   // strict: nothing may follow the top-level value.
   if (!json::sax_parse(text, &builder, json::input_format_t::json, /*strict=*/true)) {
     if (builder.error.empty()) builder.error = "malformed JSON";
     fail(path, builder.error);
   }
-  const json& root = builder.root;
-
+  json root = std::move(builder.root);
   if (!root.is_object()) fail(path, "expected an object {\"curves\": [...]}, found " + a_type_name(root));
   for (const auto& [key, value] : root.items())
     if (key != "curves") fail(path, quoted_excerpt(key) + ": unknown field (the top level has only \"curves\")");
@@ -339,13 +440,20 @@ std::vector<Curve> read_curves_json(const std::string& path) {
   if (list == root.end()) fail(path, "curves: missing (expected {\"curves\": [...]})");
   if (!list->is_array()) fail(path, "curves: expected an array, found " + a_type_name(*list));
   if (list->empty()) fail(path, "curves: empty list (need at least one curve)");
+  return root;
+}
 
+}  // namespace
+
+std::vector<Curve> read_curves_json(const std::string& path) {
+  const json root = parse_curves_file(path);
+  const json& list = root["curves"];
   std::vector<Curve> curves;
-  curves.reserve(list->size());
+  curves.reserve(list.size());
   std::unordered_map<std::string, std::size_t> index_of_id;
-  for (std::size_t i = 0; i < list->size(); ++i) {
+  for (std::size_t i = 0; i < list.size(); ++i) {
     std::string where = path + ": curves[" + std::to_string(i) + "]";
-    Curve curve = parse_curve((*list)[i], where);
+    Curve curve = parse_curve(list[i], where);
     const auto [previous, inserted] = index_of_id.emplace(curve.id, i);
     if (!inserted) fail(where, "id: duplicate of curves[" + std::to_string(previous->second) + "]");
     try {
@@ -360,6 +468,28 @@ std::vector<Curve> read_curves_json(const std::string& path) {
     curves.push_back(std::move(curve));
   }
   return curves;
+}
+
+std::vector<std::optional<MatrixWeightedCurve>> read_matrix_weighted_json(const std::string& path) {
+  const json root = parse_curves_file(path);
+  const json& list = root["curves"];
+  std::vector<std::optional<MatrixWeightedCurve>> out(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const json& entry = list[i];
+    const auto kind = entry.is_object() ? entry.find("kind") : entry.end();
+    if (kind == entry.end() || !kind->is_string() || kind->get<std::string>() != "matrix_weighted_bezier") continue;
+    std::string where = path + ": curves[" + std::to_string(i) + "]";
+    const auto id = entry.find("id");
+    if (id == entry.end() || !id->is_string()) fail(where, "id: expected a string");
+    where += " (id " + quoted_excerpt(id->get<std::string>()) + ")";
+    out[i] = parse_matrix_weighted(entry, id->get<std::string>(), where);
+    try {
+      convert(*out[i]);  // a singular M(t) is refused here as by read_curves_json
+    } catch (const CurveError& e) {
+      fail(where, e.what());
+    }
+  }
+  return out;
 }
 
 }  // namespace bezinv

@@ -4,6 +4,8 @@
 //                {"id": "a", "kind": "bezier", "points": [[x,y], ...]}
 //                {"id": "b", "kind": "rational_bezier", "points": [[x,y], ...], "weights": [w0, ...]}
 //                {"id": "c", "kind": "rational", "x_num": [...], "x_den": [...], "y_num": [...], "y_den": [...]}
+//                {"id": "m", "kind": "matrix_weighted_bezier", "points": [...], then one of "matrices": [M_0, ...];
+//                 "normals", "omegas", "mus" (Yang's eq. (2)); "tangents", "omegas", "mus" (eq. (3))}
 //   POINTS.csv   header `curve,x,y`; curve is an id or a 0-based index into the list
 //   POINTS.npy   float64 '<f8', shape (N, 2), C order: x, y per row; the curve comes from a
 //                CurveSelection (one curve for all, or an int32/int64 (N,) .npy of curve indices)
@@ -17,13 +19,16 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bezinv/curve.hpp"
 #include "bezinv/invert.hpp"
+#include "bezinv/matrix_weighted.hpp"
 
 namespace bezinv {
 
@@ -35,8 +40,18 @@ class InputError : public std::runtime_error {
 };
 
 // Parses and validates every curve. Throws InputError (malformed JSON, missing field, empty list,
-// duplicate id, a curve failing validate()).
+// duplicate id, a curve failing validate()). A plane matrix-weighted curve comes back converted
+// (bezinv/matrix_weighted.hpp: kind rational, degree 2n, the same parameter t); a space one is an
+// InputError (space curves are converted by `bezinv convert`, not inverted).
 std::vector<Curve> read_curves_json(const std::string& path);
+
+// The matrix-weighted curves of CURVES.json as written (plane and space), at their positions in
+// the file (nullopt for the other kinds), checked as read_curves_json checks the file.
+std::vector<std::optional<MatrixWeightedCurve>> read_matrix_weighted_json(const std::string& path);
+
+// Writes `contents` to `path` all or nothing, as OUT is written (README "Where OUT goes"): a
+// failed write leaves an existing file as it was. Throws InputError naming the path.
+void write_text_file(const std::string& path, std::string_view contents);
 
 // One data row of POINTS.csv. curve >= 0 indexes the curve list; a row that cannot be used
 // (unknown id, index past the end, non-finite or unparsable coordinate) has curve = -1 and a
