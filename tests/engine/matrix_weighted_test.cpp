@@ -143,4 +143,26 @@ TEST(MatrixWeighted, FigureOnesShapeConvertsToDegreeTwelveAndItsPointsInvert) {
   }
 }
 
+// Scalar matrices M_i = s_i I make Q(t) the rational Bezier curve of weights s_i, converted to
+// degree 2n with the common factor sum s_i B_i (the plan takes it out and inverts at degree n);
+// near-scalar ones (1e-9 off the diagonal) leave a near-common factor. Points made by the
+// definition invert at their parameter, status ok, either way.
+TEST(MatrixWeighted, ScalarAndNearScalarMatricesInvertAtTheirParameter) {
+  for (double off : {0.0, 1e-9}) {
+    MatrixWeightedCurve c;
+    c.id = off == 0.0 ? "scalar" : "near scalar";
+    c.points = {{0, 0, 0}, {1, 2, 0}, {3, 1, 0}, {4, 0, 0}};
+    const double s[] = {1, 2, 0.5, 1};
+    for (int i = 0; i < 4; ++i) c.matrices.push_back({s[i], i == 1 ? off : 0.0, 0, i == 1 ? off : 0.0, s[i], 0, 0, 0, 0});
+    const auto plan = bezinv::make_plan(bezinv::plane_curve(bezinv::convert(c), c.id));
+    for (int k = 0; k <= 20; ++k) {
+      const double t = k / 20.0;
+      const Vector3 p = bezinv::matrix_weighted_point(c, t);
+      const auto r = bezinv::invert_point(plan, {p[0], p[1]});
+      EXPECT_EQ(r.status, bezinv::Status::ok) << c.id << " t " << t;
+      EXPECT_NEAR(r.t, t, 1e-9) << c.id << " t " << t;
+    }
+  }
+}
+
 }  // namespace
