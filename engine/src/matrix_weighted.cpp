@@ -91,7 +91,7 @@ Matrix3 tangent_weight(int dimension, Vector3 tangent, double omega, double mu, 
 }
 
 ConvertedCurve convert(const MatrixWeightedCurve& curve) {
-  const int d = curve.dimension, n = static_cast<int>(curve.points.size()) - 1;
+  const int d = curve.dimension;
   // The adjugate M*(t) (degree (d - 1) n): its (r, c) entry is the cofactor of (c, r).
   std::array<std::array<BernsteinPoly, 3>, 3> adjugate;
   if (d == 2) {
@@ -148,7 +148,6 @@ ConvertedCurve convert(const MatrixWeightedCurve& curve) {
       out.points[k][r] = det[k] != 0.0 ? numerator[k] / det[k] : numerator[k];
     }
   }
-  (void)n;
   return out;
 }
 
