@@ -143,6 +143,31 @@ TEST(MatrixWeighted, FigureOnesShapeConvertsToDegreeTwelveAndItsPointsInvert) {
   }
 }
 
+// Figure 2's shape (the paper does not print its points): a space curve of degree 6 from
+// point-tangent pairs, the first three in the plane z = 0, the last three in the plane x = 0, the
+// middle one on their common line (the y axis); omega = 1, mu = 1, 1, 2, 2, 4, 4, 4. Converted to
+// degree 18, it is the curve of the definition to 1e-13, with every weight positive.
+TEST(MatrixWeighted, FigureTwosShapeConvertsToDegreeEighteen) {
+  const Vector3 points[] = {{2, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 3, 0}, {0, 4, 1}, {0, 4, 2}, {0, 3, 3}};
+  const Vector3 tangents[] = {{0, 1, 0}, {-0.3, 1, 0}, {-1, 1, 0}, {0, 1, 0}, {0, 0.3, 1}, {0, 0, 1}, {0, -1, 1}};
+  const double mus[] = {1, 1, 2, 2, 4, 4, 4};
+  MatrixWeightedCurve c;
+  c.id = "figure 2";
+  c.dimension = 3;
+  for (int i = 0; i < 7; ++i) {
+    c.points.push_back(points[i]);
+    c.matrices.push_back(bezinv::tangent_weight(3, tangents[i], 1.0, mus[i], "P"));
+  }
+  const auto converted = bezinv::convert(c);
+  ASSERT_EQ(converted.weights.size(), 19u);
+  for (double w : converted.weights) EXPECT_GT(w, 0.0);
+  for (int k = 0; k <= 100; ++k) {
+    const double t = k / 100.0;
+    const Vector3 a = bezinv::matrix_weighted_point(c, t), b = converted_point(converted, t);
+    for (int e = 0; e < 3; ++e) EXPECT_NEAR(a[e], b[e], 1e-13 * (1 + std::abs(a[e]))) << "t " << t;
+  }
+}
+
 // Scalar matrices M_i = s_i I make Q(t) the rational Bezier curve of weights s_i, converted to
 // degree 2n with the common factor sum s_i B_i (the plan takes it out and inverts at degree n);
 // near-scalar ones (1e-9 off the diagonal) leave a near-common factor. Points made by the
