@@ -3,16 +3,19 @@
 #include <string>
 
 #include "bezinv/tolerances.hpp"
-#include "formula/implicit_system.hpp"
+#include "formula/homogeneous_curve.hpp"
 #include "formula/null_space.hpp"
 #include "plan_data.hpp"
 
 namespace bezinv {
-namespace detail {
+namespace {
 
-Eigen::MatrixXd implicit_system(const HomogeneousCurve& curve, int e) {
+// The polynomials F of degree e that vanish on a homogeneous curve (U, V, W)(t) of degree D:
+// F(U, V, W) is a polynomial of degree D e in t, zero when it vanishes at D e + 1 parameters, so
+// F solves a linear system sampled at twice as many (detail::curve_samples).
+Eigen::MatrixXd implicit_system(const detail::HomogeneousCurve& curve, int e) {
   const int m = PlanePolynomial::size(e), rows = 2 * (curve.degree() * e + 1);
-  const std::vector<CurveSample> samples = curve_samples(curve, rows);
+  const std::vector<detail::CurveSample> samples = detail::curve_samples(curve, rows);
   Eigen::MatrixXd system(rows, m);
   Eigen::RowVectorXd terms(m);
   for (int k = 0; k < rows; ++k) {
@@ -23,7 +26,7 @@ Eigen::MatrixXd implicit_system(const HomogeneousCurve& curve, int e) {
   return system;
 }
 
-}  // namespace detail
+}  // namespace
 
 ImplicitEquation implicit_equation(const InversionPlan& plan) {
   const detail::PlanData& data = detail::plan_data(plan);
@@ -33,7 +36,7 @@ ImplicitEquation implicit_equation(const InversionPlan& plan) {
   if (n > kMaxFormulaCurveDegree)
     throw FormulaError("no implicit equation computed: degree " + std::to_string(n) + " (with separate denominators, "
                        "twice the curve's) is past " + std::to_string(kMaxFormulaCurveDegree));
-  const detail::NullSpace space = detail::null_space(detail::implicit_system(curve, n), 1);
+  const detail::NullSpace space = detail::null_space(implicit_system(curve, n), 1);
   Eigen::VectorXd c = space.basis.col(0);
   Eigen::Index largest = 0;
   const double size = c.cwiseAbs().maxCoeff(&largest);
