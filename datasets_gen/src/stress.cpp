@@ -384,6 +384,9 @@ void StressTally::add(const StressRow& row, const PointResult& got, double diago
   // Another right status of an ambiguous row answers another question (the extension's nearest
   // point, say): its t is not compared with this one's truth.
   if (got.status != row.expected) return;
+  // An off_curve row answered by projection (--off-curve projection) carries the formula's
+  // projection, not the nearest point: its status is what is checked.
+  if (got.path == Path::projection) return;
   if (std::isnan(row.t_true)) {
     ++no_truth;
     return;

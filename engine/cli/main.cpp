@@ -57,6 +57,7 @@ struct InvertArguments {
   bool no_refine = false;
   bool svd_only = false;
   std::string algebraic = "bezout";
+  std::string off_curve = "nearest";
   int threads = 0;
   bool verbose = false;
   bezinv::CurveSelection selection;
@@ -187,6 +188,7 @@ int run_invert(const InvertArguments& arguments) {
   options.refine = !arguments.no_refine;
   options.fast_path = !arguments.svd_only;
   options.algebraic = arguments.algebraic == "formula" ? bezinv::Algebraic::formula : bezinv::Algebraic::bezout;
+  options.off_curve = arguments.off_curve == "projection" ? bezinv::OffCurve::projection : bezinv::OffCurve::nearest;
   options.threads = arguments.threads;
 
   const auto reader = bezinv::open_points(arguments.points_path, curves, arguments.selection);
@@ -271,8 +273,13 @@ int main(int argc, char** argv) {
                    "Answer every point by the SVD (exact sigma_min/sigma_next on every row; slower)");
   invert->add_option("--algebraic", invert_arguments.algebraic,
                      "The fast path's algebraic step: bezout (B's null vector) or formula (the curve's inversion "
-                     "formula N/M where it is valid, path formula)")
+                     "formula N/M where it is valid, path formula; with --no-refine, N/M itself)")
       ->check(CLI::IsMember({"bezout", "formula"}))
+      ->capture_default_str();
+  invert->add_option("--off-curve", invert_arguments.off_curve,
+                     "An off_curve row's t: nearest (the nearest point of the segment) or projection (the "
+                     "inversion formula's projection N/M of the point, path projection, where the formula is valid)")
+      ->check(CLI::IsMember({"nearest", "projection"}))
       ->capture_default_str();
   const CLI::Validator non_negative([](std::string& text) { return check_count(text, 0); }, "N>=0");
   const CLI::Validator positive([](std::string& text) { return check_count(text, 1); }, "N>=1");
@@ -326,6 +333,10 @@ int main(int argc, char** argv) {
   profile->add_option("--algebraic", profile_algebraic, "The fast path's algebraic step: bezout or formula")
       ->check(CLI::IsMember({"bezout", "formula"}))
       ->capture_default_str();
+  std::string profile_off_curve = "nearest";
+  profile->add_option("--off-curve", profile_off_curve, "An off_curve row's t: nearest or projection")
+      ->check(CLI::IsMember({"nearest", "projection"}))
+      ->capture_default_str();
   profile->add_flag("--json", profile_options.json, "One JSON object on stdout");
 
   bezinv::cli::StressOptions stress_options;
@@ -347,7 +358,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   stress->add_option("--seed", stress_options.seed, "Random seed")->capture_default_str();
   stress->add_option("--threads", stress_threads, threads_help)->check(non_negative)->capture_default_str();
-  stress->add_option("--paths", stress_paths, "Comma-separated: default,svd-only,no-refine")->capture_default_str();
+  stress->add_option("--paths", stress_paths, "Comma-separated: default,svd-only,no-refine,formula,projection")->capture_default_str();
   stress
       ->add_option("--tol", stress_options.relative_tolerance,
                    "On-curve tolerance relative to the control-point bounding-box diagonal")
@@ -428,6 +439,8 @@ int main(int argc, char** argv) {
       profile_options.fast_path = !profile_svd_only;
       profile_options.algebraic =
           profile_algebraic == "formula" ? bezinv::Algebraic::formula : bezinv::Algebraic::bezout;
+      profile_options.off_curve =
+          profile_off_curve == "projection" ? bezinv::OffCurve::projection : bezinv::OffCurve::nearest;
       profile_options.kind = profile_kind == "bezier"            ? bezinv::CurveKind::bezier
                              : profile_kind == "rational"        ? bezinv::CurveKind::rational
                                                                  : bezinv::CurveKind::rational_bezier;

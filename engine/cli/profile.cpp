@@ -75,6 +75,7 @@ int run_profile(const ProfileOptions& options) {
   invert_options.refine = options.refine;
   invert_options.fast_path = options.fast_path;
   invert_options.algebraic = options.algebraic;
+  invert_options.off_curve = options.off_curve;
   invert_options.threads = options.threads;
 
   std::vector<std::vector<PointResult>> results(w.plans.size());
@@ -94,7 +95,7 @@ int run_profile(const ProfileOptions& options) {
   StageSeconds stages;  // (into the same results: a point's answer does not depend on the pass)
   for (std::size_t c = 0; c < w.plans.size(); ++c) invert(w.plans[c], w.points[c], results[c], invert_options, stages);
 
-  std::size_t total = 0, ok = 0, fast = 0, certified = 0, by_distance = 0;
+  std::size_t total = 0, ok = 0, fast = 0, certified = 0, by_distance = 0, projected = 0;
   double max_dt = 0;
   for (std::size_t c = 0; c < w.plans.size(); ++c)
     for (std::size_t i = 0; i < results[c].size(); ++i, ++total) {
@@ -103,6 +104,7 @@ int run_profile(const ProfileOptions& options) {
       fast += r.path == Path::bezout_lu || r.path == Path::formula;
       certified += (r.path == Path::bezout_lu || r.path == Path::formula) && std::isnan(r.sigma_next);  // the isolation certificate's rows
       by_distance += r.path == Path::nearest && std::isnan(r.sigma_min);    // the off-curve path's rows
+      projected += r.path == Path::projection;
       if (r.status == Status::ok) max_dt = std::max(max_dt, std::abs(r.t - w.t_true[c][i]));
     }
   const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
@@ -116,11 +118,11 @@ int run_profile(const ProfileOptions& options) {
         "\"points\": %zu, \"curves\": %zu, \"noise\": %g, \"refine\": %s, \"seconds\": %.6g, "
         "\"stages_points_per_second\": {\"form_b\": %.6g, \"kernel\": %.6g, \"read_out\": %.6g, \"refine\": %.6g, "
         "\"off_curve\": %.6g, \"decide\": %.6g}, \"ok\": %zu, \"fast_path\": %zu, \"certified\": %zu, "
-        "\"off_curve_path\": %zu, \"max_abs_dt_ok\": %.3g}\n",
+        "\"off_curve_path\": %zu, \"projection\": %zu, \"max_abs_dt_ok\": %.3g}\n",
         pps, options.degree, threads, static_cast<int>(kernel.size()), kernel.data(), to_string(options.kind), total,
         w.plans.size(), options.noise, options.refine ? "true" : "false", wall, rate(stages.form_b),
         rate(stages.kernel), rate(stages.read_out), rate(stages.refine), rate(stages.off_curve), rate(stages.decide), ok,
-        fast, certified, by_distance, max_dt);
+        fast, certified, by_distance, projected, max_dt);
     return 0;
   }
   std::printf("bezinv profile: %zu points on %zu %s curves of degree %d, noise %g, refine %s, threads %d, kernel %.*s\n\n",
@@ -146,6 +148,9 @@ int run_profile(const ProfileOptions& options) {
               fast, total, percent(fast), certified, percent(certified));
   std::printf("answered off_curve by distance alone (path nearest, no singular values): %zu (%.1f%%)\n", by_distance,
               percent(by_distance));
+  if (options.off_curve == OffCurve::projection)
+    std::printf("answered off_curve by the inversion formula's projection (path projection): %zu (%.1f%%)\n",
+                projected, percent(projected));
   return 0;
 }
 

@@ -17,6 +17,7 @@ struct ProfileOptions {
   bool refine = true;
   bool fast_path = true;
   Algebraic algebraic = Algebraic::bezout;
+  OffCurve off_curve = OffCurve::nearest;
   bool json = false;
   unsigned long long seed = 20261122;
 };

@@ -114,6 +114,8 @@ InvertOptions options_for(StressPath path, const StressOptions& options) {
   o.threads = options.threads;
   o.fast_path = path != StressPath::svd_only;
   o.refine = path != StressPath::no_refine;
+  if (path == StressPath::formula) o.algebraic = Algebraic::formula;
+  if (path == StressPath::projection) o.off_curve = OffCurve::projection;
   return o;
 }
 
@@ -129,6 +131,8 @@ const char* to_string(StressPath path) {
   switch (path) {
     case StressPath::default_path: return "default";
     case StressPath::svd_only: return "svd-only";
+    case StressPath::formula: return "formula";
+    case StressPath::projection: return "projection";
     case StressPath::no_refine: return "no-refine";
   }
   return "?";
@@ -155,7 +159,8 @@ std::vector<CurveKind> parse_kinds(const std::string& list) {
 
 std::vector<StressPath> parse_paths(const std::string& list) {
   return parse_list<StressPath>(list, "--paths", "path", [](const std::string& item) {
-    return named(item, {StressPath::default_path, StressPath::svd_only, StressPath::no_refine});
+    return named(item, {StressPath::default_path, StressPath::svd_only, StressPath::no_refine, StressPath::formula,
+                        StressPath::projection});
   });
 }
 

@@ -9,8 +9,10 @@
 
 namespace bezinv::cli {
 
-// Which way the engine is asked: as by default, every point by the SVD, or without refinement.
-enum class StressPath { default_path, svd_only, no_refine };
+// Which way the engine is asked: as by default, every point by the SVD, without refinement, with
+// the inversion formula's algebraic step (--algebraic formula), or with off-curve rows by projection
+// (--off-curve projection: their t is not the nearest point's, so only their status is compared).
+enum class StressPath { default_path, svd_only, no_refine, formula, projection };
 const char* to_string(StressPath path);
 
 struct StressOptions {

@@ -210,9 +210,11 @@ void StressReport::write(const std::filesystem::path& directory, const nlohmann:
         {"got_t", finite(k.got.t)},
         {"got_t2", finite(k.got.t2)},
         {"command", std::string("bezinv invert --curves curves.json --points points.csv --out out.csv") +
-                        (std::string(k.origin.path) == "svd-only"    ? " --svd-only"
-                         : std::string(k.origin.path) == "no-refine" ? " --no-refine"
-                                                                     : "")}};
+                        (std::string(k.origin.path) == "svd-only"     ? " --svd-only"
+                         : std::string(k.origin.path) == "no-refine"  ? " --no-refine"
+                         : std::string(k.origin.path) == "formula"    ? " --algebraic formula"
+                         : std::string(k.origin.path) == "projection" ? " --off-curve projection"
+                                                                      : "")}};
     write_file(dir / "truth.json", truth.dump(2) + "\n");
     return next - 1;
   };

@@ -32,6 +32,15 @@ const char* to_string(Path path) {
     case Path::nearest: return "nearest";
     case Path::bezout_lu: return "bezout_lu";
     case Path::formula: return "formula";
+    case Path::projection: return "projection";
+  }
+  return "?";
+}
+
+const char* to_string(OffCurve off_curve) {
+  switch (off_curve) {
+    case OffCurve::nearest: return "nearest";
+    case OffCurve::projection: return "projection";
   }
   return "?";
 }

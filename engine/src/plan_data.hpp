@@ -133,7 +133,8 @@ struct PlanData {
 
   // What only answers off the curve use, built by the first point that asks (off_curve_data).
   Lazy<OffCurveData> off_curve;
-  // The formula path's formula, made by the first batch that takes the path (formula_path_data).
+  // The curve's inversion formula, made by the first batch that takes the formula path, projects an
+  // off-curve point or reports N/M unrefined (formula_path_data).
   Lazy<FormulaPathData> formula_path;
 
   // Power-basis leading coefficients of the four polynomials and their size bounds, for

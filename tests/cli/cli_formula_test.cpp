@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "support/run_bezinv.hpp"
@@ -179,6 +180,74 @@ TEST(CliFormula, InvertWithTheFormulaGivesTheDefaultsStatuses) {
   }
   EXPECT_EQ(a.back()[1], "double_point");  // the centre: the Bezout path's answer
   EXPECT_GT(by_formula, 20);
+}
+
+// One CSV results file as rows of named fields.
+std::vector<std::map<std::string, std::string>> formula_cli_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> lines;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = text.find('\n', start);
+    std::vector<std::string> fields;
+    std::size_t a = start;
+    while (a <= end) {
+      const std::size_t b = std::min(text.find(',', a), end);
+      fields.push_back(text.substr(a, b - a));
+      a = b + 1;
+    }
+    lines.push_back(fields);
+    start = end + 1;
+  }
+  std::vector<std::map<std::string, std::string>> rows;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    std::map<std::string, std::string> row;
+    for (std::size_t j = 0; j < lines[0].size() && j < lines[i].size(); ++j) row[lines[0][j]] = lines[i][j];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// `--off-curve projection` on the paper's semicircles (Examples 1 and 2): the point (1, 1), off the
+// unit circle, is projected from the centre P(inf) onto the circle. Example 1: from (-1, 0) onto
+// (3/5, 4/5), t = 1/4 by formula (12), residual |(3/5, 4/5) - (1, 1)| = sqrt(1/5). Example 2: from
+// (-4/5, -3/5) onto (20/29, 21/29), t^ = 1/6 by formula (15), residual sqrt(145)/29. The nearest
+// point, (1/sqrt 2, 1/sqrt 2), is the default's answer. A point on the curve is answered as without
+// the option. And `--no-refine --algebraic formula` reports N/M itself at (3/5, 4/5): t = 1/4 by
+// (12), t^ = 1/7 by (15).
+TEST(CliFormula, ProjectionAnswersFromTheCentreAndNoRefineReportsNOverM) {
+  ScratchDirectory scratch("bezinv-cli-formula-");
+  const std::string curves = scratch.write("curves.json", kPaperCurves);
+  const std::string points = scratch.write("points.csv",
+                                           "curve,x,y\nexample 1,1,1\nexample 1,0.6,0.8\n"
+                                           "example 2,1,1\nexample 2,0.6,0.8\n");
+  auto run = [&](const std::string& options, const std::string& out) {
+    const auto r = run_bezinv(scratch, "invert " + options + " --curves " + quoted(curves) + " --points " +
+                                           quoted(points) + " --out " + quoted(scratch.path(out)));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return formula_cli_rows(bezinv::test_support::read_file(scratch.path(out)));
+  };
+  const auto nearest = run("", "nearest.csv");
+  const auto projection = run("--off-curve projection", "projection.csv");
+  const auto unrefined = run("--no-refine --algebraic formula", "unrefined.csv");
+  ASSERT_EQ(nearest.size(), 4u);
+  ASSERT_EQ(projection.size(), 4u);
+  ASSERT_EQ(unrefined.size(), 4u);
+  const double projected_t[] = {0.25, 1.0 / 6.0}, projected_residual[] = {std::sqrt(0.2), std::sqrt(145.0) / 29},
+               on_curve_t[] = {0.25, 1.0 / 7.0};
+  for (int c = 0; c < 2; ++c) {
+    const auto& off = projection[2 * c];
+    EXPECT_EQ(off.at("status"), "off_curve");
+    EXPECT_EQ(off.at("path"), "projection");
+    EXPECT_NEAR(std::stod(off.at("t")), projected_t[c], 1e-12);
+    EXPECT_NEAR(std::stod(off.at("residual")), projected_residual[c], 1e-12);
+    EXPECT_EQ(nearest[2 * c].at("status"), "off_curve");
+    EXPECT_EQ(nearest[2 * c].at("path"), "nearest");
+    EXPECT_NEAR(std::stod(nearest[2 * c].at("residual")), std::sqrt(2.0) - 1, 1e-12);
+    EXPECT_EQ(projection[2 * c + 1], nearest[2 * c + 1]);  // on the curve: unchanged
+    EXPECT_EQ(unrefined[2 * c + 1].at("status"), "ok");
+    EXPECT_EQ(unrefined[2 * c + 1].at("path"), "formula");
+    EXPECT_NEAR(std::stod(unrefined[2 * c + 1].at("t")), on_curve_t[c], 1e-12);
+  }
 }
 
 }  // namespace

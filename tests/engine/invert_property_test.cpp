@@ -688,6 +688,107 @@ TEST(InvertProperty, TheFormulaPathAnswersAsTheBezoutPath) {
   EXPECT_GT(formula_rows, rows / 5);  // not vacuous
 }
 
+// --off-curve projection changes no status and no row but off_curve ones, whose t becomes the
+// inversion formula's projection N(P0)/M(P0) where the formula is valid at the point (else the nearest
+// point as before): its residual is |P(t) - P0|, no nearer than the segment's nearest point where t
+// is on the segment. With either algebraic step, on points on, near and off every kind of curve,
+// loose tolerances included (the extension then often passes within them).
+TEST(InvertProperty, ProjectionChangesOnlyTheOffCurveRowsParameter) {
+  std::size_t rows = 0, projected = 0;
+  const int max_degree = test_support::kSanitizerThinning > 1 ? 8 : 12;
+  for (const Case& c : random_cases()) {
+    if (c.degree > (c.plan.curve().kind == CurveKind::rational ? max_degree / 2 : max_degree)) continue;
+    std::mt19937_64 rng(c.seed + 31);
+    std::vector<KnownPoint> known = datasets::segment_points(*c.sampling, 6, rng);
+    for (const auto& set : {datasets::extension_points(*c.sampling, 4, rng),
+                            datasets::normal_offset_points(*c.sampling, 24, 1e-7, 0.3, rng)})
+      known.insert(known.end(), set.begin(), set.end());
+    std::vector<Point> points;
+    for (const KnownPoint& k : known) points.push_back(k.point);
+    for (Algebraic algebraic : {Algebraic::bezout, Algebraic::formula})
+      for (double tolerance : {kDefaultRelativeTolerance, 3e-2}) {
+        const InvertOptions nearest_options{.relative_tolerance = tolerance, .algebraic = algebraic};
+        InvertOptions projection_options = nearest_options;
+        projection_options.off_curve = OffCurve::projection;
+        std::vector<PointResult> nearest(points.size()), projection(points.size());
+        invert(c.plan, points, nearest, nearest_options);
+        invert(c.plan, points, projection, projection_options);
+        for (std::size_t i = 0; i < points.size(); ++i) {
+          const PointResult &a = nearest[i], &b = projection[i];
+          ++rows;
+          ASSERT_EQ(b.status, a.status) << describe(c, known[i], b) << "\nnearest: " << describe(c, known[i], a);
+          if (b.path != Path::projection) {
+            EXPECT_TRUE(same_bits(a.t, b.t) && same_bits(a.t2, b.t2) && same_bits(a.residual, b.residual) &&
+                        a.path == b.path && same_bits(a.sigma_min, b.sigma_min))
+                << describe(c, known[i], b) << "\nnearest: " << describe(c, known[i], a);
+            continue;
+          }
+          ++projected;
+          ASSERT_EQ(b.status, Status::off_curve) << describe(c, known[i], b);
+          ASSERT_TRUE(std::isfinite(b.t)) << describe(c, known[i], b);
+          EXPECT_TRUE(std::isnan(b.t2) && std::isnan(b.sigma_min) && std::isnan(b.sigma_next));
+          const auto p = c.plan.curve().point(b.t);
+          const double d = std::hypot(p[0] - points[i].x, p[1] - points[i].y);
+          EXPECT_NEAR(b.residual, d, 1e-9 * (d + c.plan.diagonal())) << describe(c, known[i], b);
+          if (b.t >= 0.0 && b.t <= 1.0) {
+            EXPECT_GE(b.residual, a.residual * (1 - 1e-9) - 1e-12 * c.plan.diagonal())
+                << describe(c, known[i], b) << "\nnearest: " << describe(c, known[i], a);
+          }
+        }
+      }
+  }
+  std::printf("[ measured ] %zu rows, %zu answered by projection\n", rows, projected);
+  EXPECT_GT(projected, rows / 10);  // not vacuous
+}
+
+// --no-refine with the formula: t = N/M itself where it is within the tolerance of the segment
+// and certified alone there (status ok, path formula, t within the formula's accuracy of the point's
+// parameter); every other row exactly as --no-refine with bezout gives it.
+TEST(InvertProperty, UnrefinedFormulaRowsAreNOverMOnTheCurve) {
+  std::size_t rows = 0, formula_rows = 0;
+  const int max_degree = test_support::kSanitizerThinning > 1 ? 8 : 12;
+  for (const Case& c : random_cases()) {
+    if (c.degree > (c.plan.curve().kind == CurveKind::rational ? max_degree / 2 : max_degree)) continue;
+    std::mt19937_64 rng(c.seed + 32);
+    std::vector<KnownPoint> known = datasets::segment_points(*c.sampling, 12, rng);
+    const std::size_t on_segment = known.size();  // made at t_true, rounded to the nearest double
+    for (const auto& set : {datasets::end_points(*c.sampling), datasets::extension_points(*c.sampling, 4, rng),
+                            datasets::normal_offset_points(*c.sampling, 8, 1e-7, 0.1, rng)})
+      known.insert(known.end(), set.begin(), set.end());
+    std::vector<Point> points;
+    for (const KnownPoint& k : known) points.push_back(k.point);
+    std::vector<PointResult> bezout(points.size()), formula(points.size());
+    invert(c.plan, points, bezout, {.refine = false});
+    invert(c.plan, points, formula, {.refine = false, .algebraic = Algebraic::formula});
+    const double tolerance = kDefaultRelativeTolerance * c.plan.diagonal();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const PointResult &a = bezout[i], &b = formula[i];
+      const KnownPoint& k = known[i];
+      ++rows;
+      if (b.path != Path::formula) {
+        EXPECT_TRUE(b.status == a.status && same_bits(a.t, b.t) && same_bits(a.t2, b.t2) &&
+                    same_bits(a.residual, b.residual) && a.path == b.path)
+            << describe(c, k, b) << "\nbezout: " << describe(c, k, a);
+        continue;
+      }
+      ++formula_rows;
+      EXPECT_EQ(b.status, Status::ok) << describe(c, k, b);
+      EXPECT_TRUE(b.t >= 0.0 && b.t <= 1.0) << describe(c, k, b);
+      EXPECT_LE(b.residual, tolerance) << describe(c, k, b);
+      const auto p = c.plan.curve().point(b.t);
+      EXPECT_NEAR(b.residual, std::hypot(p[0] - k.point.x, p[1] - k.point.y), 1e-9 * c.plan.diagonal());
+      // A point made at t_true on the segment: N/M is t_true to the formula's accuracy
+      // (kFormulaPathMaxSegmentError, with the point's rounding over the curve's speed).
+      if (i < on_segment) {
+        EXPECT_LE(std::abs(b.t - k.t), 2 * kFormulaPathMaxSegmentError + 1e3 * parameter_bound(c, k))
+            << describe(c, k, b);
+      }
+    }
+  }
+  std::printf("[ measured ] %zu rows, %zu answered by N/M unrefined\n", rows, formula_rows);
+  EXPECT_GT(formula_rows, rows / 4);  // not vacuous
+}
+
 // Off the curve, anywhere around curves that loop: the off-curve path answers without the SVD only
 // what the SVD path answers, off_curve at the same nearest point of the segment. Points off a
 // random t along the normal, up to a tenth of the curve's size: on these loops many have another

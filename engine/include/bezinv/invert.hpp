@@ -32,15 +32,31 @@ enum class Path : std::uint8_t {
   bezout_lu,    // null vector of the Bezout matrix by LU and inverse iteration (the fast path; sigma_min
                 // and sigma_next are then the kernel's estimates relative to ||B||_F, see kernels/batch.hpp).
   formula,      // the curve's inversion formula N/M (bezinv/inversion_formula.hpp), refined and certified
-                // as on the fast path; no B was formed: sigma_min and sigma_next are NaN.
+                // as on the fast path (with --no-refine: N/M itself); no B was formed: sigma_min and
+                // sigma_next are NaN.
+  projection,   // off_curve with OffCurve::projection: t = N(P0)/M(P0), the paper's projection of the
+                // point onto the curve (from the centre for degree <= 3), not the nearest point; residual
+                // is |P(t) - P0|; sigma_min and sigma_next NaN.
                 // New paths go last, so the codes of the .npy results file stay as they were.
 };
 
 // The algebraic step of the fast path: the null vector of B (the paper's), or the curve's inversion
 // formula t = N(x, y) / M(x, y) where it is valid at the point (Wang & Joe; the Bezout path where
 // it is not, near its base points). Either start is refined and certified the same way, so the
-// statuses are the same; t agrees to the accuracy bound. Used only with refine and the fast path.
+// statuses are the same; t agrees to the accuracy bound. With the fast path (and refine); with
+// refine false, formula reports N/M itself where it can (InvertOptions::algebraic).
 enum class Algebraic : std::uint8_t { bezout, formula };
+
+// What an off_curve row's t is: the nearest point of the segment (found and proved by a search), or
+// the inversion formula's projection of the point, t = N(P0)/M(P0) (Wang & Joe, Sect. 4: for degree
+// <= 3 the curve's point on the line from the formula's centre through P0; above, the curve's
+// variable intersection with N - t M = 0). The projection costs a few operations where the search
+// costs many; it may lie outside [0, 1] (the line meets the extension). Statuses are the same either
+// way: a row is answered by projection only where the point is proved farther than the tolerance from
+// the whole curve; where the formula is not valid at the point (near its base points, a curve with no
+// formula or of formula degree above kFormulaPathMaxDegree), the nearest point as before.
+enum class OffCurve : std::uint8_t { nearest, projection };
+const char* to_string(OffCurve off_curve);
 const char* to_string(Path path);
 
 struct PointResult {
@@ -63,7 +79,11 @@ struct InvertOptions {
   // estimated); false: every point by the SVD (exact singular values on every row, slower).
   // Used only with refine: the unrefined output is the paper's algebraic t, from the SVD.
   bool fast_path = true;
+  // With refine false and formula: t = N/M itself where the formula is valid at the point and the
+  // point is within the tolerance of the segment there, isolated from any other branch (else the
+  // SVD path's algebraic t, as with bezout).
   Algebraic algebraic = Algebraic::bezout;
+  OffCurve off_curve = OffCurve::nearest;
 };
 
 struct Point { double x, y; };

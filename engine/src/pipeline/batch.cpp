@@ -5,6 +5,7 @@
 #include "pipeline/fast_path.hpp"
 #include "pipeline/off_curve_path.hpp"
 #include "pipeline/form_b.hpp"
+#include "pipeline/formula_path.hpp"
 #include "pipeline/pair_check.hpp"
 #include "pipeline/stage_clock.hpp"
 #include "pipeline/svd_path.hpp"
@@ -30,6 +31,9 @@ void invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
   if (fast) {
     fast_path(plan, points, results, count, options, w, clock);
     off_curve_path(plan, options, count, w, results, clock);
+  } else if (reports_formula_unrefined(plan, options)) {
+    formula_unrefined(plan, options, count, w, results);
+    clock.lap(&StageSeconds::refine);
   }
 
   // The SVD path for the lanes still undecided, compacted to the front of the batch (in order, so

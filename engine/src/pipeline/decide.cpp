@@ -13,6 +13,7 @@
 #include "pipeline/far_point.hpp"
 #include "pipeline/pair_check.hpp"
 #include "pipeline/point_polynomials.hpp"
+#include "pipeline/projection.hpp"
 #include "pipeline/sylvester_path.hpp"
 #include "refine.hpp"
 
@@ -218,8 +219,13 @@ void decide(const PlanData& plan, double u0, double v0, const Candidate& main, c
     }
 
   // Off the curve (or every algebraic candidate failed): the nearest point of the segment.
+  // Off the curve by projection where asked for and the formula is valid at the point.
+  auto report_off_curve = [&](const Candidate& c) {
+    report(c, Status::off_curve);
+    if (projects_off_curve(plan, options)) project_off_curve(plan, u0, v0, r);
+  };
   if (!options.refine && count > 0 && std::isfinite(candidates[0].t))
-    return report(candidates[0], Status::off_curve);  // --no-refine keeps the algebraic t
+    return report_off_curve(candidates[0]);  // --no-refine keeps the algebraic t
   double hint = -1.0;
   for (int i = 0; i < count; ++i)
     if (std::isfinite(candidates[i].t)) { hint = std::clamp(candidates[i].t, 0.0, 1.0); break; }
@@ -234,7 +240,8 @@ void decide(const PlanData& plan, double u0, double v0, const Candidate& main, c
   }
   // The algebra can miss a point that is on the segment (e.g. a coordinate constant along a
   // curve with separate denominators makes p vanish identically); the distance decides.
-  report(nearest, nearest.distance <= tolerance ? Status::ok : Status::off_curve);
+  if (nearest.distance <= tolerance) return report(nearest, Status::ok);
+  report_off_curve(nearest);
 }
 
 }  // namespace bezinv::detail

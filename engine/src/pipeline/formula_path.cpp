@@ -6,7 +6,11 @@
 #include "bezinv/inversion_formula.hpp"
 #include "bezinv/kernels/batch.hpp"
 #include "pipeline/fast_path.hpp"
+#include "degree_drop.hpp"
+#include "isolation.hpp"
+#include "pipeline/decide.hpp"
 #include "pipeline/form_b.hpp"
+#include "refine.hpp"
 
 namespace bezinv::detail {
 
@@ -14,7 +18,7 @@ const FormulaPathData& formula_path_data(const PlanData& plan) {
   return plan.formula_path.get([&](FormulaPathData& data) {
     // The curve's degree as the formula sees it: twice the plan's with separate denominators.
     const int degree = plan.common_denominator ? plan.degree : 2 * plan.degree;
-    if (!plan.usable || plan.straight_line || plan.degree < 3 || degree > kFormulaPathMaxDegree) return;
+    if (!plan.usable || plan.straight_line || degree > kFormulaPathMaxDegree) return;
     try {
       const InversionFormula formula(plan, FormulaChoice{});
       if (!(formula.segment_error() <= kFormulaPathMaxSegmentError)) return;
@@ -41,15 +45,17 @@ bool takes_formula_path(const PlanData& plan, const InvertOptions& options) {
          formula_path_data(plan).usable;
 }
 
-bool forms_b_late(const PlanData& plan, const InvertOptions& options) {
-  return forms_b_in_seed(plan, options) || takes_formula_path(plan, options);
+bool reports_formula_unrefined(const PlanData& plan, const InvertOptions& options) {
+  // (Degree 1 has no B to form late: a line's parameter is read directly.)
+  return !options.refine && options.algebraic == Algebraic::formula && plan.degree >= 2 &&
+         formula_path_data(plan).usable;
 }
 
-namespace {
+bool forms_b_late(const PlanData& plan, const InvertOptions& options) {
+  return forms_b_in_seed(plan, options) || takes_formula_path(plan, options) ||
+         reports_formula_unrefined(plan, options);
+}
 
-// N/M at the plan-normalized point (u, v), or NaN where the formula is not used there: M within
-// kFormulaPathMinDenominator of the size of its terms (a base point near), or the point farther
-// than kFormulaPathMaxCoordinate.
 double formula_parameter(const FormulaPathData& f, double u, double v) {
   if (!(std::abs(u) <= kFormulaPathMaxCoordinate && std::abs(v) <= kFormulaPathMaxCoordinate))
     return PointResult::nan;
@@ -81,8 +87,6 @@ double formula_parameter(const FormulaPathData& f, double u, double v) {
   if (!(std::abs(denominator) >= kFormulaPathMinDenominator * size)) return PointResult::nan;
   return numerator / denominator;
 }
-
-}  // namespace
 
 void formula_or_seed(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                      BatchWorkspace& w) {
@@ -129,6 +133,22 @@ void formula_or_seed(const PlanData& plan, const Point* points, PointResult* res
     lane_poison[l] = poison[k];
   }
   mark_overflowing_b(plan, points, lane_poison.data(), count, w, results);
+}
+
+void formula_unrefined(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
+                       PointResult* results) {
+  const FormulaPathData& f = formula_path_data(plan);
+  const double tolerance = normalized_tolerance(plan, options);
+  for (std::size_t l = 0; l < count; ++l) {
+    if (!w.active[l]) continue;
+    const double u = w.u[l], v = w.v[l];
+    const double t = formula_parameter(f, u, v);
+    if (!(t >= 0.0 && t <= 1.0)) continue;  // NaN too
+    const double d = distance(plan, u, v, t);
+    if (!(d <= tolerance) || degree_drops(plan, u, v) || !isolated(plan, u, v, t, d, tolerance)) continue;
+    w.active[l] = 0;
+    answer_fast(plan, t, d, PointResult::nan, PointResult::nan, results[l], Path::formula);
+  }
 }
 
 }  // namespace bezinv::detail

@@ -16,10 +16,27 @@ namespace bezinv::detail {
 // kFormulaPathMaxDegree, where the plan's formula exists and is accurate on the segment).
 bool takes_formula_path(const PlanData& plan, const InvertOptions& options);
 
+// Whether refine is off and the formula asked for (InvertOptions::algebraic), and the plan has one:
+// formula_unrefined answers what it can, B is formed late for the other lanes.
+bool reports_formula_unrefined(const PlanData& plan, const InvertOptions& options);
+
+// N/M at the plan-normalized point (u, v) (f from formula_path_data, usable), or NaN where the
+// formula is not used there: M within kFormulaPathMinDenominator of the size of its terms (a base
+// point near), or the point farther than kFormulaPathMaxCoordinate.
+double formula_parameter(const FormulaPathData& f, double u, double v);
+
 // The algebraic step of the fast path for every active lane: t_algebraic, defect and the sigma_min
 // estimate (NaN on formula lanes), from_formula. The seed's lanes have their B formed here; a lane
 // whose B overflows is answered as a far point.
 void formula_or_seed(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                      BatchWorkspace& w);
+
+// With refine off: every active lane whose N/M is a parameter of the segment within the tolerance
+// of the point, with no degree drop there and the isolation certificate proving no other branch
+// within the tolerance (any stationary point of the distance near t is within
+// kDistinctParameterGap of it; isolation.hpp), is answered ok with t = N/M itself, path formula.
+// The others go on to the SVD path, whose algebraic t they get as with bezout.
+void formula_unrefined(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
+                       PointResult* results);
 
 }  // namespace bezinv::detail

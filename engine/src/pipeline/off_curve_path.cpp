@@ -9,6 +9,7 @@
 #include "bezinv/tolerances.hpp"
 #include "extension.hpp"
 #include "pipeline/candidate.hpp"
+#include "pipeline/projection.hpp"
 #include "refine.hpp"
 #include "stationary_points.hpp"
 
@@ -46,6 +47,8 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
   std::uint8_t any_active = 0;
   for (std::size_t l = 0; l < count; ++l) any_active |= w.active[l];
   if (!any_active) return clock.lap(&StageSeconds::off_curve);
+  const bool projection = projects_off_curve(plan, options);
+  if (projection) projection_path(plan, options, count, w, results);
 
   // Both proofs hold for a radius a little above the tolerance: a distance computed at any t is
   // within ~n eps of the true one (normalized coordinates), far below kIsolationMargin.
@@ -98,6 +101,7 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
     r.status = Status::off_curve;
     r.path = Path::nearest;
     r.sigma_min = r.sigma_next = PointResult::nan;
+    if (projection) project_off_curve(plan, u[k], v[k], r);
   }
   clock.lap(&StageSeconds::off_curve);
 }
