@@ -25,6 +25,39 @@ std::array<double, 2> Curve::point(double t) const {
           bernstein_value(y_num, t) / bernstein_value(y_den, t)};
 }
 
+std::array<double, 3> Curve::point3(double t) const {
+  const auto p = point(t);
+  return {p[0], p[1], dimension() == 3 ? bernstein_value(z_num, t) / bernstein_value(z_den, t) : 0.0};
+}
+
+Curve Curve::space_bezier(std::string id, const std::vector<std::array<double, 3>>& points) {
+  std::vector<std::array<double, 2>> xy;
+  for (const auto& p : points) xy.push_back({p[0], p[1]});
+  Curve c = bezier(std::move(id), xy);
+  for (const auto& p : points) c.z_num.push_back(p[2]);
+  c.z_den = c.x_den;
+  return c;
+}
+
+Curve Curve::space_rational_bezier(std::string id, const std::vector<std::array<double, 3>>& points,
+                                   const std::vector<double>& weights) {
+  std::vector<std::array<double, 2>> xy;
+  for (const auto& p : points) xy.push_back({p[0], p[1]});
+  Curve c = rational_bezier(std::move(id), xy, weights);
+  for (std::size_t i = 0; i < points.size(); ++i) c.z_num.push_back(weights[i] * points[i][2]);
+  c.z_den = weights;
+  return c;
+}
+
+Curve Curve::space_rational(std::string id, std::vector<double> x_num, std::vector<double> x_den,
+                            std::vector<double> y_num, std::vector<double> y_den, std::vector<double> z_num,
+                            std::vector<double> z_den) {
+  Curve c = rational(std::move(id), std::move(x_num), std::move(x_den), std::move(y_num), std::move(y_den));
+  c.z_num = std::move(z_num);
+  c.z_den = std::move(z_den);
+  return c;
+}
+
 Curve Curve::bezier(std::string id, const std::vector<std::array<double, 2>>& points) {
   Curve c;
   c.id = std::move(id);
@@ -120,8 +153,10 @@ void validate(const Curve& curve) {
     throw CurveError(who + "degree " + std::to_string(size - 1) + " exceeds the maximum " +
                      std::to_string(kMaxDegree));
   const std::pair<const char*, const std::vector<double>*> fields[] = {
-      {"x_num", &curve.x_num}, {"x_den", &curve.x_den}, {"y_num", &curve.y_num}, {"y_den", &curve.y_den}};
+      {"x_num", &curve.x_num}, {"x_den", &curve.x_den}, {"y_num", &curve.y_num},
+      {"y_den", &curve.y_den}, {"z_num", &curve.z_num}, {"z_den", &curve.z_den}};
   for (const auto& [name, values] : fields) {
+    if (values == &curve.z_num && curve.dimension() == 2) break;  // a plane curve has no z
     if (values->size() != size)
       throw CurveError(who + name + ": " + std::to_string(values->size()) + " coefficients, expected " +
                        std::to_string(size) + " (one common degree)");
@@ -134,6 +169,8 @@ void validate(const Curve& curve) {
     throw CurveError(who + den_field + ": the denominator has a root on [0,1] (the curve has a pole on its segment)");
   if (curve.kind == CurveKind::rational && has_root_on_unit_interval(curve.y_den))
     throw CurveError(who + "y_den: the denominator has a root on [0,1] (the curve has a pole on its segment)");
+  if (curve.kind == CurveKind::rational && curve.dimension() == 3 && has_root_on_unit_interval(curve.z_den))
+    throw CurveError(who + "z_den: the denominator has a root on [0,1] (the curve has a pole on its segment)");
 }
 
 }  // namespace bezinv

@@ -2,12 +2,17 @@
 // engine/src/pipeline/ (docs/README.md walks a point through it).
 #include "bezinv/invert.hpp"
 
-#include "bezinv/profile.hpp"
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "bezinv/kernels/batch.hpp"
+#include "bezinv/profile.hpp"
 #include "pipeline/batch.hpp"
 #include "pipeline/schedule.hpp"
 #include "plan_data.hpp"
+#include "quote.hpp"
+#include "space/invert_space.hpp"
 
 namespace bezinv {
 
@@ -50,7 +55,19 @@ std::string_view active_kernel_name() {
   return kernels::active_implementation().name;
 }
 
+namespace {
+
+void require_dimension(const InversionPlan& plan, int dimension) {
+  if (plan.dimension() != dimension)
+    throw std::invalid_argument("bezinv::invert: curve " + detail::quoted_excerpt(plan.curve().id) + " is a " +
+                                (plan.dimension() == 3 ? "space curve: its points need z (Point3)"
+                                                       : "plane curve: its points are Point (x, y)"));
+}
+
+}  // namespace
+
 PointResult invert_point(const InversionPlan& plan, Point point, const InvertOptions& options) {
+  require_dimension(plan, 2);
   PointResult r;
   const detail::QueueScope scope;
   const detail::PlanData& data = detail::plan_data(plan);
@@ -61,17 +78,45 @@ PointResult invert_point(const InversionPlan& plan, Point point, const InvertOpt
 
 void invert(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
             const InvertOptions& options) {
+  require_dimension(plan, 2);
   detail::invert_curve(detail::plan_data(plan), points, results, options, nullptr);
 }
 
 void invert(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
             const InvertOptions& options, StageSeconds& stages) {
+  require_dimension(plan, 2);
   detail::invert_curve(detail::plan_data(plan), points, results, options, &stages);
 }
 
 void invert(std::span<const InversionPlan> plans, std::span<const int> curve_of, std::span<const Point> points,
             std::span<PointResult> results, const InvertOptions& options) {
-  detail::invert_curves(plans, curve_of, points, results, options);
+  for (std::size_t i = 0; i < curve_of.size(); ++i)
+    if (curve_of[i] >= 0 && (i == 0 || curve_of[i] != curve_of[i - 1])) require_dimension(plans[curve_of[i]], 2);
+  detail::invert_curves(plans, curve_of, points, {}, results, options);
+}
+
+PointResult invert_point(const InversionPlan& plan, Point3 point, const InvertOptions& options) {
+  PointResult r;
+  invert(plan, std::span<const Point3>(&point, 1), std::span<PointResult>(&r, 1), options);
+  return r;
+}
+
+void invert(const InversionPlan& plan, std::span<const Point3> points, std::span<PointResult> results,
+            const InvertOptions& options) {
+  require_dimension(plan, 3);
+  std::vector<Point> xy(points.size());
+  std::vector<double> z(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) xy[i] = {points[i].x, points[i].y}, z[i] = points[i].z;
+  detail::invert_space_curve(detail::plan_data(plan), xy, z, results, options, nullptr);
+}
+
+void invert(std::span<const InversionPlan> plans, std::span<const int> curve_of, std::span<const Point> points,
+            std::span<const double> z, std::span<PointResult> results, const InvertOptions& options) {
+  bool space = false;
+  for (std::size_t i = 0; i < curve_of.size(); ++i) space = space || (curve_of[i] >= 0 && plans[curve_of[i]].dimension() == 3);
+  if (space && z.size() != points.size())
+    throw std::invalid_argument("bezinv::invert: points of space curves need z for every point");
+  detail::invert_curves(plans, curve_of, points, z, results, options);
 }
 
 }  // namespace bezinv

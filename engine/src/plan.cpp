@@ -25,6 +25,7 @@
 #include "stationary_points.hpp"
 
 #include "refine.hpp"
+#include "space/space_curve.hpp"
 
 namespace bezinv {
 namespace {
@@ -258,15 +259,24 @@ InversionPlan::InversionPlan() {
 
 InversionPlan::InversionPlan(std::shared_ptr<const detail::PlanData> data) : data_(std::move(data)) {}
 
-const Curve& InversionPlan::curve() const { return data_->curve; }
+const Curve& InversionPlan::curve() const { return data_->space ? data_->space->curve : data_->curve; }
 int InversionPlan::input_degree() const { return data_->input_degree; }
 int InversionPlan::degree() const { return data_->degree; }
-double InversionPlan::diagonal() const { return data_->diagonal; }
+double InversionPlan::diagonal() const { return data_->space ? data_->space->diagonal : data_->diagonal; }
+int InversionPlan::dimension() const { return data_->space ? 3 : 2; }
 bool InversionPlan::usable() const { return data_->usable; }
 const char* InversionPlan::reason() const { return data_->reason; }
 void InversionPlan::prepare_off_curve() const { (void)detail::off_curve_data(*data_); }
 
 InversionPlan make_plan(const Curve& curve) {
+  if (curve.dimension() == 3) {
+    // A space curve: the plan of its projection, with the space data beside it (space_curve.hpp).
+    validate(curve);
+    auto space = std::make_shared<const detail::SpaceData>(detail::make_space_data(curve));
+    detail::PlanData data = detail::make_plan_data(detail::projected_curve(*space));
+    data.space = std::move(space);
+    return InversionPlan(std::make_shared<const detail::PlanData>(std::move(data)));
+  }
   return InversionPlan(std::make_shared<const detail::PlanData>(detail::make_plan_data(curve)));
 }
 

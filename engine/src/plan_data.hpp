@@ -23,6 +23,8 @@ namespace bezinv::detail {
 // clearance of the extension. Up to about four times the rest of a plan to make (sign tests on
 // pieces of polynomials of degree up to 6n), so a plan makes it on first use (off_curve_data), and plans
 // whose points are all on the curve never pay for it.
+struct SpaceData;
+
 struct OffCurveData {
   // The certified nearest-point search (engine/src/stationary_points.hpp): on each of
   // kStationaryPieces pieces of [0, 1], the Bernstein coefficients (degree stationary_degree) of
@@ -136,6 +138,11 @@ struct PlanData {
   // The curve's inversion formula, made by the first batch that takes the formula path, projects an
   // off-curve point or reports N/M unrefined (formula_path_data).
   Lazy<FormulaPathData> formula_path;
+
+  // A space curve (space/space_curve.hpp): this plan is its projection's, `curve` the projected
+  // plane curve, and `space` the curve as given with what checks the answers in space. Null for a
+  // plane curve.
+  std::shared_ptr<const SpaceData> space;
 
   // Power-basis leading coefficients of the four polynomials and their size bounds, for
   // detecting a degree drop of p and q at a given point (paper Sect. 4).

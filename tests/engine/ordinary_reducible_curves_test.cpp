@@ -385,7 +385,7 @@ TEST(OrdinaryReducible, ImproperParametrizationsBeyondQOfTSquared) {
         std::vector<std::vector<double>> c;
         for (const std::vector<double>* p : {&q.x_num, &q.x_den, &q.y_num, &q.y_den})
           c.push_back(exact::to_double(compose(exact::to_exact(*p), phi.power)));
-        const Curve curve{"improper", kind, c[0], c[1], c[2], c[3]};
+        const Curve curve{"improper", kind, c[0], c[1], c[2], c[3], {}, {}};
         const std::string name = std::string(to_string(kind)) + " Q of degree " + std::to_string(m) + " at " +
                                  phi.name + ", seed " + std::to_string(seed);
         const ExactCurve exact(curve);

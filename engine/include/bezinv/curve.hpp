@@ -20,19 +20,33 @@ struct Curve {
   std::string id;
   CurveKind kind = CurveKind::bezier;
   std::vector<double> x_num, x_den, y_num, y_den;  // n+1 Bernstein coefficients each
+  // A space curve's third coordinate z = z_num / z_den, stored as x and y are (bezier: z_den = 1;
+  // rational_bezier: w_i c_i over w_i). Empty for a plane curve.
+  std::vector<double> z_num, z_den;
 
   int degree() const { return static_cast<int>(x_num.size()) - 1; }
-  // True when x_den == y_den coefficient by coefficient (then B(x0,y0) is affine in (x0,y0)).
-  bool common_denominator() const { return x_den == y_den; }
+  int dimension() const { return z_num.empty() && z_den.empty() ? 2 : 3; }
+  // True when x_den == y_den (== z_den) coefficient by coefficient (then B(x0,y0) is affine in (x0,y0)).
+  bool common_denominator() const { return x_den == y_den && (dimension() == 2 || z_den == x_den); }
 
-  // P(t). Valid for t outside [0,1] too (the curve's extension), NaN where a denominator is 0.
+  // P(t) of a plane curve (x and y of a space curve). Valid for t outside [0,1] too (the curve's
+  // extension), NaN where a denominator is 0.
   std::array<double, 2> point(double t) const;
+  // P(t) in space (z = 0 for a plane curve).
+  std::array<double, 3> point3(double t) const;
 
   static Curve bezier(std::string id, const std::vector<std::array<double, 2>>& points);
   static Curve rational_bezier(std::string id, const std::vector<std::array<double, 2>>& points,
                                const std::vector<double>& weights);
   static Curve rational(std::string id, std::vector<double> x_num, std::vector<double> x_den,
                         std::vector<double> y_num, std::vector<double> y_den);
+  // Space curves, the same kinds with control points [x, y, z] (kind rational: z_num, z_den too).
+  static Curve space_bezier(std::string id, const std::vector<std::array<double, 3>>& points);
+  static Curve space_rational_bezier(std::string id, const std::vector<std::array<double, 3>>& points,
+                                     const std::vector<double>& weights);
+  static Curve space_rational(std::string id, std::vector<double> x_num, std::vector<double> x_den,
+                              std::vector<double> y_num, std::vector<double> y_den, std::vector<double> z_num,
+                              std::vector<double> z_den);
 };
 
 // A curve that cannot be used at all. what() names the curve and the field.

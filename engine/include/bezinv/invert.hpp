@@ -87,6 +87,12 @@ struct InvertOptions {
 };
 
 struct Point { double x, y; };
+// A point in space. Constructed from three numbers only, so that {x, y} stays a plane Point.
+struct Point3 {
+  double x = 0, y = 0, z = 0;
+  constexpr Point3() = default;
+  constexpr Point3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+};
 
 // Name of the SVD kernel the pipeline uses in this process (see kernels/).
 std::string_view active_kernel_name();
@@ -103,6 +109,18 @@ void invert(const InversionPlan& plan, std::span<const Point> points, std::span<
 // already rejected (then results[i] is left as the caller set it).
 void invert(std::span<const InversionPlan> plans, std::span<const int> curve_of,
             std::span<const Point> points, std::span<PointResult> results,
+            const InvertOptions& options = {});
+
+// Space curves (plan.dimension() == 3; docs/space-curves.md): the same contract in space, the
+// distances and the nearest point in 3D. The plane overloads above throw std::invalid_argument for
+// a space curve's plan, and these for a plane curve's.
+PointResult invert_point(const InversionPlan& plan, Point3 point, const InvertOptions& options = {});
+void invert(const InversionPlan& plan, std::span<const Point3> points, std::span<PointResult> results,
+            const InvertOptions& options = {});
+// Many points of plane and space curves: z[i] is the third coordinate of points[i], read only
+// where plans[curve_of[i]] is a space curve (z may be empty when no plan is).
+void invert(std::span<const InversionPlan> plans, std::span<const int> curve_of,
+            std::span<const Point> points, std::span<const double> z, std::span<PointResult> results,
             const InvertOptions& options = {});
 
 }  // namespace bezinv

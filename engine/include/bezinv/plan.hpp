@@ -33,6 +33,8 @@ class InversionPlan {
   // Diagonal of the bounding box of the control points (input units): the on-curve tolerance is
   // relative to it (inf for a box wider than the largest double).
   double diagonal() const;
+  // 2 for a plane curve, 3 for a space curve (whose points need z: invert.hpp's Point3 overloads).
+  int dimension() const;
   // False when no point of the curve can be given one parameter (all its points coincide); every
   // point of it is then reported `failed` with reason(), a static text.
   bool usable() const;

@@ -14,6 +14,7 @@
 
 #include "pipeline/batch.hpp"
 #include "pipeline/workspace.hpp"
+#include "space/invert_space.hpp"
 
 namespace bezinv::detail {
 namespace {
@@ -75,8 +76,18 @@ void invert_curve(const PlanData& plan, std::span<const Point> points, std::span
     }
 }
 
+void for_each_range(std::size_t count, const InvertOptions& options,
+                    const std::function<void(std::size_t, std::size_t)>& body) {
+  constexpr std::size_t kRange = 256;
+  if (options.threads == 1 || count <= kRange) return body(0, count);
+  arena_for(options.threads).execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kRange),
+                      [&](const auto& range) { body(range.begin(), range.end()); });
+  });
+}
+
 void invert_curves(std::span<const InversionPlan> plans, std::span<const int> curve_of, std::span<const Point> points,
-                   std::span<PointResult> results, const InvertOptions& options) {
+                   std::span<const double> z, std::span<PointResult> results, const InvertOptions& options) {
   // Batches must hold points of one curve: runs of consecutive points of the same curve are
   // inverted in place (the common case: files grouped by curve); a point whose curve differs from
   // both neighbours forms a run of one. Rejected rows (curve_of < 0) keep what the caller set.
@@ -88,8 +99,13 @@ void invert_curves(std::span<const InversionPlan> plans, std::span<const int> cu
   std::size_t begin = 0;
   const std::size_t count = points.size();
   auto invert_run = [&](const Run& run, const InvertOptions& run_options) {
-    invert_curve(plan_data(plans[curve_of[run.begin]]), points.subspan(run.begin, run.end - run.begin),
-                 results.subspan(run.begin, run.end - run.begin), run_options, nullptr);
+    const PlanData& plan = plan_data(plans[curve_of[run.begin]]);
+    const std::size_t length = run.end - run.begin;
+    if (plan.space)
+      invert_space_curve(plan, points.subspan(run.begin, length), z.subspan(run.begin, length),
+                         results.subspan(run.begin, length), run_options, nullptr);
+    else
+      invert_curve(plan, points.subspan(run.begin, length), results.subspan(run.begin, length), run_options, nullptr);
   };
   while (begin < count) {
     std::size_t end = begin + 1;

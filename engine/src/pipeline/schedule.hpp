@@ -1,6 +1,8 @@
 #pragma once
 // Scheduling: the batches of a curve's points over TBB worker threads. Answers do not depend on
 // the thread count (no lane's answer depends on another's).
+#include <cstddef>
+#include <functional>
 #include <span>
 
 #include "bezinv/profile.hpp"
@@ -13,8 +15,13 @@ namespace bezinv::detail {
 void invert_curve(const PlanData& plan, std::span<const Point> points, std::span<PointResult> results,
                   const InvertOptions& options, StageSeconds* stages);
 
-// Points of many curves: curve_of[i] indexes plans (negative: left as the caller set it).
+// Points of many curves: curve_of[i] indexes plans (negative: left as the caller set it); z[i]
+// the third coordinate where the plan is a space curve's (space/invert_space.hpp).
 void invert_curves(std::span<const InversionPlan> plans, std::span<const int> curve_of, std::span<const Point> points,
-                   std::span<PointResult> results, const InvertOptions& options);
+                   std::span<const double> z, std::span<PointResult> results, const InvertOptions& options);
+
+// body(begin, end) over [0, count) in ranges, in parallel on options.threads threads (one: here).
+void for_each_range(std::size_t count, const InvertOptions& options,
+                    const std::function<void(std::size_t, std::size_t)>& body);
 
 }  // namespace bezinv::detail

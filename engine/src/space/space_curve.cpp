@@ -1,0 +1,384 @@
+#include "space/space_curve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "bezinv/bernstein.hpp"
+#include "bezinv/tolerances.hpp"
+#include "quote.hpp"
+
+namespace bezinv::detail {
+namespace {
+
+// Bernstein coefficients of the derivative (degree n - 1): n (c_{i+1} - c_i); {0} for a constant.
+std::vector<double> derivative(const std::vector<double>& c) {
+  const int n = static_cast<int>(c.size()) - 1;
+  if (n < 1) return {0.0};
+  std::vector<double> d(n);
+  for (int i = 0; i < n; ++i) d[i] = n * (c[i + 1] - c[i]);
+  return d;
+}
+
+// The product of two Bernstein polynomials (degrees m and n, result m + n):
+// c_k = sum_{i + j = k} C(m, i) C(n, j) / C(m + n, k) a_i b_j.
+std::vector<double> product(const std::vector<double>& a, const std::vector<double>& b) {
+  const int m = static_cast<int>(a.size()) - 1, n = static_cast<int>(b.size()) - 1;
+  std::vector<double> c(m + n + 1, 0.0);
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; j <= n; ++j) c[i + j] += binomial(m, i) * binomial(n, j) * a[i] * b[j];
+  for (int k = 0; k <= m + n; ++k) c[k] /= binomial(m + n, k);
+  return c;
+}
+
+std::vector<double> sum(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> c(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) c[i] = a[i] + b[i];
+  return c;
+}
+
+std::vector<double> scaled(std::vector<double> a, double s) {
+  for (double& v : a) v *= s;
+  return a;
+}
+
+// Eigenvectors of the symmetric 3 x 3 matrix m (cyclic Jacobi rotations), as the columns of v,
+// ordered by decreasing eigenvalue.
+void symmetric_eigenvectors(std::array<std::array<double, 3>, 3> m, std::array<std::array<double, 3>, 3>& v) {
+  v = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  for (int sweep = 0; sweep < 50; ++sweep) {
+    const double off = std::abs(m[0][1]) + std::abs(m[0][2]) + std::abs(m[1][2]);
+    const double size = std::abs(m[0][0]) + std::abs(m[1][1]) + std::abs(m[2][2]);
+    if (!(off > 1e-300) || off <= 1e-18 * size) break;
+    for (int p = 0; p < 2; ++p)
+      for (int q = p + 1; q < 3; ++q) {
+        if (m[p][q] == 0.0) continue;
+        const double theta = 0.5 * std::atan2(2 * m[p][q], m[q][q] - m[p][p]);
+        const double c = std::cos(theta), s = std::sin(theta);
+        for (int k = 0; k < 3; ++k) {  // m <- m J (columns p, q)
+          const double mkp = m[k][p], mkq = m[k][q];
+          m[k][p] = c * mkp - s * mkq;
+          m[k][q] = s * mkp + c * mkq;
+        }
+        for (int k = 0; k < 3; ++k) {  // m <- J^T m (rows p, q)
+          const double mpk = m[p][k], mqk = m[q][k];
+          m[p][k] = c * mpk - s * mqk;
+          m[q][k] = s * mpk + c * mqk;
+        }
+        for (int k = 0; k < 3; ++k) {
+          const double vkp = v[k][p], vkq = v[k][q];
+          v[k][p] = c * vkp - s * vkq;
+          v[k][q] = s * vkp + c * vkq;
+        }
+      }
+  }
+  // Order the columns by eigenvalue (selection sort of three).
+  std::array<int, 3> order{0, 1, 2};
+  std::sort(order.begin(), order.end(), [&](int i, int j) { return m[i][i] > m[j][j]; });
+  const auto copy = v;
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 3; ++k) v[k][c] = copy[k][order[c]];
+}
+
+// The number of samples the nearest-point search starts from.
+int sample_count(int degree) { return 16 * (degree + 1) + 1; }
+
+}  // namespace
+
+SpacePolynomial::SpacePolynomial(std::vector<double> coefficients) : c(std::move(coefficients)) {
+  const int n = static_cast<int>(c.size()) - 1;
+  binomial_c.resize(c.size());
+  for (int i = 0; i <= n; ++i) binomial_c[i] = c[i] * binomial(n, i);
+}
+
+double SpacePolynomial::operator()(double t) const {
+  const int n = static_cast<int>(c.size()) - 1;
+  if (n <= 0) return c.empty() ? 0.0 : c[0];
+  if (t >= 0.0 && t <= 0.5) {
+    const double s = t / (1 - t);
+    double v = binomial_c[n];
+    for (int i = n - 1; i >= 0; --i) v = v * s + binomial_c[i];
+    return v * std::pow(1 - t, n);
+  }
+  if (t > 0.5 && t <= 1.0) {
+    const double s = (1 - t) / t;
+    double v = binomial_c[0];
+    for (int i = 1; i <= n; ++i) v = v * s + binomial_c[i];
+    return v * std::pow(t, n);
+  }
+  return bernstein_value(c, t);
+}
+
+SpaceData make_space_data(const Curve& curve) {
+  SpaceData space;
+  space.curve = curve;
+  const int n = curve.degree();
+  space.degree = n;
+  const std::array<const std::vector<double>*, 3> nums{&curve.x_num, &curve.y_num, &curve.z_num},
+      dens{&curve.x_den, &curve.y_den, &curve.z_den};
+
+  // The bounding box of the control points, in halves (as the plane plan: a box as wide as the
+  // doubles go keeps a finite centre and scale).
+  std::array<double, 3> lo, hi;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double x = (*nums[k])[i] / (*dens[k])[i];
+      lo[k] = std::min(lo[k], x);
+      hi[k] = std::max(hi[k], x);
+    }
+  const double half_diagonal =
+      std::sqrt(std::pow(0.5 * hi[0] - 0.5 * lo[0], 2) + std::pow(0.5 * hi[1] - 0.5 * lo[1], 2) +
+                std::pow(0.5 * hi[2] - 0.5 * lo[2], 2));
+  space.diagonal = 2 * half_diagonal;
+  for (int k = 0; k < 3; ++k) space.centre[k] = 0.5 * lo[k] + 0.5 * hi[k];
+  if (half_diagonal > 0 && std::isfinite(half_diagonal)) {
+    int e = 0;
+    std::frexp(half_diagonal, &e);
+    e = std::clamp(e + 1, -1000, 1023);
+    space.scale = std::ldexp(1.0, e);
+    space.inverse_scale = std::ldexp(1.0, -e);
+  }
+  const double magnitude = std::max({std::abs(lo[0]), std::abs(hi[0]), std::abs(lo[1]), std::abs(hi[1]),
+                                     std::abs(lo[2]), std::abs(hi[2])});
+  space.normalized_resolution =
+      kResolutionUlps * (std::nextafter(magnitude, std::numeric_limits<double>::infinity()) - magnitude) *
+      space.inverse_scale;
+
+  // The principal axes of the control points (normalized units, about the box's centre).
+  std::array<std::array<double, 3>, 3> covariance{}, axes{};
+  for (int i = 0; i <= n; ++i) {
+    std::array<double, 3> d;
+    for (int k = 0; k < 3; ++k)
+      d[k] = (*nums[k])[i] / (*dens[k])[i] * space.inverse_scale - space.centre[k] * space.inverse_scale;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) covariance[r][c] += d[r] * d[c];
+  }
+  symmetric_eigenvectors(covariance, axes);
+  for (int c = 0; c < 2; ++c) {
+    // A fixed sign (the largest component positive), so that the same curve gets the same plane.
+    int largest = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(axes[k][c]) > std::abs(axes[largest][c])) largest = k;
+    const double sign = axes[largest][c] < 0 ? -1.0 : 1.0;
+    for (int k = 0; k < 3; ++k) (c == 0 ? space.a : space.b)[k] = sign * axes[k][c];
+  }
+
+  // The normalized curve: (x_k - c_k) / scale = (N_k - c_k D_k) / (scale D_k), each pair divided by
+  // its largest denominator coefficient.
+  for (int k = 0; k < 3; ++k) {
+    double largest = 0;
+    for (double w : *dens[k]) largest = std::max(largest, std::abs(w));
+    std::vector<double> num(n + 1), den(n + 1);
+    for (int i = 0; i <= n; ++i) {
+      den[i] = (*dens[k])[i] / largest;
+      num[i] = (*nums[k])[i] / largest * space.inverse_scale - space.centre[k] * space.inverse_scale * den[i];
+    }
+    const std::vector<double> d_num = derivative(num), d_den = derivative(den);
+    space.dd_num[k] = SpacePolynomial(derivative(d_num));
+    space.dd_den[k] = SpacePolynomial(derivative(d_den));
+    space.d_num[k] = SpacePolynomial(d_num);
+    space.d_den[k] = SpacePolynomial(d_den);
+    space.num[k] = SpacePolynomial(num);
+    space.den[k] = SpacePolynomial(den);
+  }
+  const int samples = sample_count(n);
+  space.samples.resize(3 * static_cast<std::size_t>(samples));
+  for (int j = 0; j < samples; ++j) {
+    const double t = static_cast<double>(j) / (samples - 1);
+    for (int k = 0; k < 3; ++k) space.samples[3 * j + k] = space.num[k](t) / space.den[k](t);
+  }
+
+  // The projection's degree with separate denominators: the product of the distinct ones.
+  if (!curve.common_denominator()) {
+    int distinct = 1 + (curve.y_den != curve.x_den) + (curve.z_den != curve.x_den && curve.z_den != curve.y_den);
+    if (distinct * n > kMaxDegree)
+      throw CurveError("curve " + quoted_excerpt(curve.id) + ": a space curve with " + std::to_string(distinct) +
+                       " different denominators of degree " + std::to_string(n) +
+                       " is inverted through a plane curve of degree " + std::to_string(distinct * n) +
+                       ", above the maximum " + std::to_string(kMaxDegree));
+  }
+  return space;
+}
+
+Curve projected_curve(const SpaceData& space) {
+  const Curve& curve = space.curve;
+  const int n = curve.degree();
+  const std::array<const std::vector<double>*, 3> nums{&curve.x_num, &curve.y_num, &curve.z_num},
+      dens{&curve.x_den, &curve.y_den, &curve.z_den};
+  Curve flat;
+  flat.id = curve.id;
+  flat.kind = curve.kind;
+  if (curve.common_denominator()) {
+    // u = a . (P - c) = (a . (N - c W)) / W: one denominator, the curve's.
+    flat.x_num.resize(n + 1);
+    flat.y_num.resize(n + 1);
+    for (int i = 0; i <= n; ++i) {
+      double u = 0, v = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double homogeneous = (*nums[k])[i] - space.centre[k] * curve.x_den[i];
+        u += space.a[k] * homogeneous;
+        v += space.b[k] * homogeneous;
+      }
+      flat.x_num[i] = u;
+      flat.y_num[i] = v;
+    }
+    flat.x_den = curve.x_den;
+    flat.y_den = curve.x_den;
+    return flat;
+  }
+  // Separate denominators: over the product D of the distinct ones, each term times D / D_k.
+  std::vector<const std::vector<double>*> distinct;
+  for (const auto* d : dens)
+    if (std::none_of(distinct.begin(), distinct.end(), [&](const auto* e) { return *e == *d; })) distinct.push_back(d);
+  std::vector<double> D = *distinct[0];
+  for (std::size_t j = 1; j < distinct.size(); ++j) D = product(D, *distinct[j]);
+  std::vector<double> U(D.size(), 0.0), V(D.size(), 0.0);
+  for (int k = 0; k < 3; ++k) {
+    std::vector<double> homogeneous(n + 1);
+    for (int i = 0; i <= n; ++i) homogeneous[i] = (*nums[k])[i] - space.centre[k] * (*dens[k])[i];
+    for (const auto* d : distinct)  // times the other distinct denominators
+      if (*d != *dens[k]) homogeneous = product(homogeneous, *d);
+    U = sum(U, scaled(homogeneous, space.a[k]));
+    V = sum(V, scaled(homogeneous, space.b[k]));
+  }
+  flat.kind = CurveKind::rational;
+  flat.x_num = U;
+  flat.y_num = V;
+  flat.x_den = D;
+  flat.y_den = D;
+  return flat;
+}
+
+SpaceJet space_jet(const SpaceData& space, double t) {
+  SpaceJet j;
+  for (int k = 0; k < 3; ++k) {
+    const double N = space.num[k](t), D = space.den[k](t), N1 = space.d_num[k](t), D1 = space.d_den[k](t),
+                 N2 = space.dd_num[k](t), D2 = space.dd_den[k](t);
+    const double x = N / D, x1 = (N1 - D1 * x) / D;
+    j.p[k] = x;
+    j.dp[k] = x1;
+    j.ddp[k] = (N2 - 2 * D1 * x1 - D2 * x) / D;
+  }
+  return j;
+}
+
+double space_distance(const SpaceData& space, const std::array<double, 3>& point, double t) {
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double e = space.num[k](t) / space.den[k](t) - point[k];
+    d2 += e * e;
+  }
+  return std::sqrt(d2);
+}
+
+SpaceRefined space_refine(const SpaceData& space, const std::array<double, 3>& point, double t0, bool on_segment) {
+  double t = on_segment ? std::clamp(t0, 0.0, 1.0) : t0;
+  SpaceRefined best{t, space_distance(space, point, t)};
+  if (!std::isfinite(best.distance)) return best;
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    const SpaceJet j = space_jet(space, t);
+    double g = 0, speed2 = 0, curvature = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double e = j.p[k] - point[k];
+      g += e * j.dp[k];
+      speed2 += j.dp[k] * j.dp[k];
+      curvature += e * j.ddp[k];
+    }
+    double h = speed2 + curvature;
+    if (!(h > 0)) h = speed2;  // locally concave: Gauss-Newton still descends
+    if (!(h > 0) || !std::isfinite(g)) break;
+    double step = -g / h;
+    double next = 0, d = 0;
+    for (int halving = 0; halving < 40; ++halving, step *= 0.5) {
+      next = on_segment ? std::clamp(t + step, 0.0, 1.0) : t + step;
+      d = space_distance(space, point, next);
+      if (d <= best.distance) break;
+    }
+    if (!(d <= best.distance)) break;  // no step reduces the distance: a minimum to rounding
+    const bool settled = std::abs(next - t) <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t));
+    best = {next, d};
+    t = next;
+    if (settled) break;
+  }
+  return best;
+}
+
+SpaceRefined space_nearest(const SpaceData& space, const std::array<double, 3>& point) {
+  const int samples = static_cast<int>(space.samples.size() / 3);
+  std::vector<double> d2(samples);
+  for (int j = 0; j < samples; ++j) {
+    double s = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double e = space.samples[3 * j + k] - point[k];
+      s += e * e;
+    }
+    d2[j] = s;
+  }
+  SpaceRefined best{PointResult::nan, std::numeric_limits<double>::infinity()};
+  for (int j = 0; j < samples; ++j) {
+    const bool minimum = (j == 0 || d2[j] <= d2[j - 1]) && (j == samples - 1 || d2[j] <= d2[j + 1]);
+    if (!minimum) continue;
+    const SpaceRefined r = space_refine(space, point, static_cast<double>(j) / (samples - 1), true);
+    if (r.distance < best.distance || (r.distance == best.distance && r.t < best.t)) best = r;
+  }
+  return best;
+}
+
+void space_answer(const SpaceData& space, const std::array<double, 3>& point, double tolerance,
+                  const InvertOptions& options, PointResult& r) {
+  if (r.status == Status::invalid_input || r.status == Status::failed) return;
+  auto accept = [&](const SpaceRefined& a) {
+    r.t = a.t;
+    r.residual = a.distance * space.scale;
+  };
+  if (!options.refine) {
+    // The algebraic t as it is: its distance in space decides, as the plane's decides there.
+    const double d = space_distance(space, point, r.t);
+    r.residual = d * space.scale;
+    if (r.status == Status::double_point) {
+      const double d2 = space_distance(space, point, r.t2);
+      if (d <= tolerance && d2 <= tolerance) return;
+      r.status = d <= tolerance || d2 <= tolerance ? Status::ok : Status::off_curve;
+      if (d2 <= tolerance && !(d <= tolerance)) r.t = r.t2, r.residual = d2 * space.scale;
+      r.t2 = PointResult::nan;
+      return;
+    }
+    if (!(d <= tolerance)) r.status = Status::off_curve;
+    return;
+  }
+  if (r.status == Status::ok || r.status == Status::outside_segment) {
+    const SpaceRefined a = space_refine(space, point, r.t, r.status == Status::ok);
+    if (a.distance <= tolerance) return accept(a);
+  } else if (r.status == Status::double_point) {
+    const SpaceRefined a = space_refine(space, point, r.t, true), b = space_refine(space, point, r.t2, true);
+    const bool a_in = a.distance <= tolerance, b_in = b.distance <= tolerance;
+    if (a_in && b_in && std::abs(a.t - b.t) > kDistinctParameterGap) {
+      const SpaceRefined& lo = a.t < b.t ? a : b;
+      accept(lo);
+      r.t2 = (a.t < b.t ? b : a).t;
+      return;
+    }
+    if (a_in || b_in) {  // one branch in space: the projection crossed itself there, the curve does not
+      r.status = Status::ok;
+      r.t2 = PointResult::nan;
+      return accept(a_in && (!b_in || a.distance <= b.distance) ? a : b);
+    }
+  }
+  // Off the curve in space (the plane's parameters were spurious, or the plane said so).
+  const SpaceRefined nearest = space_nearest(space, point);
+  r.t2 = PointResult::nan;
+  r.path = Path::nearest;
+  if (!std::isfinite(nearest.distance)) {
+    r.status = Status::failed;
+    r.t = r.residual = PointResult::nan;
+    r.reason = "no finite parameter found";
+    return;
+  }
+  accept(nearest);
+  r.status = nearest.distance <= tolerance ? Status::ok : Status::off_curve;
+}
+
+}  // namespace bezinv::detail

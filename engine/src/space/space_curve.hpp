@@ -1,0 +1,88 @@
+#pragma once
+// Space curves (engine internal): a curve in 3D inverted by the plane engine, each answer checked
+// in space (docs/space-curves.md).
+//
+// The method stays the paper's. With r = Z - z0 W beside p = X - x0 W and q = Y - y0 W, the point's
+// parameter t0 is a common root of all three. The plan takes two fixed combinations of them,
+//     p' = a . (p, q, r),   q' = b . (p, q, r),
+// with a, b orthonormal: they are p and q of the plane curve (a . (P - c), b . (P - c)), the space
+// curve projected on the plane through the centre c of its control points spanned by their two
+// principal axes. B(p', q') is affine in (x0, y0, z0) as the plane B is in (x0, y0), the plane plan
+// precomputes it, and its null vector holds t0 (a common root of p, q, r is one of p', q').
+//
+// What a combination adds are spurious common roots: parameters where the curve and the point
+// differ only along the plane's normal, where the projected curve passes through the projected
+// point. The projection is a contraction (orthonormal a, b), so whatever is within the tolerance in
+// space is within it in the plane: the plane engine misses no parameter. Each of its parameters is
+// then refined and measured in space (space_answer), which keeps the real ones and drops the
+// spurious ones; a point within the tolerance of no parameter in space is off the curve, answered
+// with the nearest point of the segment in space. Principal axes because a plane curve in a tilted
+// plane is then projected without distortion (the plane engine sees it as it is), and a space curve
+// is spread as widely as it can be, which keeps spurious crossings of the projection rare.
+#include <array>
+#include <vector>
+
+#include "bezinv/curve.hpp"
+#include "bezinv/invert.hpp"
+
+namespace bezinv::detail {
+
+// A polynomial in the Bernstein basis, with c_i C(n, i) kept for Horner's rule: O(n) per value on
+// [0, 1] (in s = t / (1 - t), or its mirror past 1/2), de Casteljau outside (the extension).
+struct SpacePolynomial {
+  std::vector<double> c, binomial_c;
+  explicit SpacePolynomial(std::vector<double> coefficients = {});
+  double operator()(double t) const;
+};
+
+struct SpaceData {
+  Curve curve;               // as given (validated, dimension 3)
+  double diagonal = 0.0;     // of the control points' bounding box, input units
+  std::array<double, 3> centre{}, a{}, b{};  // the projection: u = a . (P - centre), v = b . (P - centre)
+  double scale = 1.0, inverse_scale = 1.0;   // normalized units: (P - centre) / scale
+  double normalized_resolution = 0.0;        // the coordinates' own resolution (as PlanData's)
+  int degree = 0;
+  // The normalized curve, coordinate k = num[k] / den[k], and the derivatives' polynomials
+  // (degrees n - 1 and n - 2; zero below).
+  std::array<SpacePolynomial, 3> num, den, d_num, d_den, dd_num, dd_den;
+  std::vector<double> samples;  // P at kSpaceSamples(n) equally spaced t in [0, 1], normalized, x y z each
+};
+
+// The space data of a validated space curve; throws CurveError for one the plane engine cannot take
+// (separate denominators whose projection exceeds kMaxDegree).
+SpaceData make_space_data(const Curve& curve);
+
+// The projected plane curve (the same kind; ids kept), whose plan inverts the projected points.
+Curve projected_curve(const SpaceData& space);
+
+// P(t) - (u0, v0, w0) and |.|, normalized units; and its first two derivatives in t.
+struct SpaceJet {
+  std::array<double, 3> p, dp, ddp;
+};
+SpaceJet space_jet(const SpaceData& space, double t);
+double space_distance(const SpaceData& space, const std::array<double, 3>& point, double t);
+
+// Newton's method on (P(t) - P0) . P'(t) = 0 from t0, safeguarded (a step that does not reduce the
+// distance is halved), kept in [0, 1] when on_segment: a local minimum of |P(t) - P0| near t0 and
+// the distance there.
+struct SpaceRefined {
+  double t, distance;
+};
+SpaceRefined space_refine(const SpaceData& space, const std::array<double, 3>& point, double t0, bool on_segment);
+
+// The nearest point of the segment: every local minimum of the distance over the samples (and both
+// ends) refined, the nearest kept.
+SpaceRefined space_nearest(const SpaceData& space, const std::array<double, 3>& point);
+
+// The normalized point.
+inline std::array<double, 3> space_normalize(const SpaceData& space, double x, double y, double z) {
+  const double s = space.inverse_scale;
+  return {x * s - space.centre[0] * s, y * s - space.centre[1] * s, z * s - space.centre[2] * s};
+}
+
+// The space answer from the plane engine's answer r (for the projected point) to the normalized
+// point, the tolerance in normalized units.
+void space_answer(const SpaceData& space, const std::array<double, 3>& point, double tolerance,
+                  const InvertOptions& options, PointResult& r);
+
+}  // namespace bezinv::detail
