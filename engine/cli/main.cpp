@@ -315,6 +315,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, bezinv::kMaxDegree))
       ->capture_default_str();
   profile->add_option("--points", profile_options.points, "Number of points")->check(positive)->capture_default_str();
+  profile->add_option("--dim", profile_options.dimension, "2: plane curves; 3: space curves (lifted off their plane)")
+      ->check(CLI::IsMember({2, 3}))
+      ->capture_default_str();
   profile->add_option("--curves", profile_options.curves, "Distinct curves the points are spread over")
       ->check(positive)
       ->capture_default_str();

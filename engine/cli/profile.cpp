@@ -27,7 +27,8 @@ namespace {
 
 struct Workload {
   std::vector<InversionPlan> plans;
-  std::vector<std::vector<Point>> points;   // per curve
+  std::vector<std::vector<Point>> points;   // per curve (plane curves)
+  std::vector<std::vector<Point3>> points3;  // per curve (space curves)
   std::vector<std::vector<double>> t_true;  // per curve
 };
 
@@ -36,17 +37,39 @@ Workload generate(const ProfileOptions& options) {
   Workload w;
   const int curves = std::max(1, options.curves);
   for (int c = 0; c < curves; ++c) {
-    const Curve curve = datasets::random_curve(options.kind, options.degree, rng, datasets::ControlPolygon::perturbed_arc);
+    Curve curve = datasets::random_curve(options.kind, options.degree, rng, datasets::ControlPolygon::perturbed_arc);
+    if (options.dimension == 3) {
+      // Lifted off its plane: z = z_num / x_den, z_i uniform in +-0.3 of the plane curve's size.
+      const double size = make_plan(curve).diagonal();
+      for (std::size_t i = 0; i < curve.x_den.size(); ++i)
+        curve.z_num.push_back(curve.x_den[i] * datasets::uniform(rng, -0.3, 0.3) * size);
+      curve.z_den = curve.x_den;
+    }
     w.plans.push_back(make_plan(curve));
     // Made here, untimed, as the rest of the plan: otherwise the first off-curve point of each
     // curve would make it inside the timed inversion.
     if (options.noise > 0) w.plans.back().prepare_off_curve();
     const std::size_t count = options.points / curves + (static_cast<std::size_t>(c) < options.points % curves);
-    std::vector<double> t(count), angle(count), offset(count);
+    std::vector<double> t(count), angle(count), offset(count), polar(count);
     for (std::size_t i = 0; i < count; ++i) {
       t[i] = datasets::uniform(rng, 0.0, 1.0);
       angle[i] = datasets::uniform(rng, 0.0, 2 * std::numbers::pi);
       offset[i] = options.noise * datasets::uniform(rng, 0.0, 1.0) * w.plans.back().diagonal();
+      polar[i] = std::acos(datasets::uniform(rng, -1.0, 1.0));  // a direction uniform on the sphere
+    }
+    if (options.dimension == 3) {
+      std::vector<Point3> points(count);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 4096), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const auto p = curve.point3(t[i]);
+          const double s = std::sin(polar[i]);
+          points[i] = Point3(p[0] + offset[i] * s * std::cos(angle[i]), p[1] + offset[i] * s * std::sin(angle[i]),
+                             p[2] + offset[i] * std::cos(polar[i]));
+        }
+      });
+      w.points3.push_back(std::move(points));
+      w.t_true.push_back(std::move(t));
+      continue;
     }
     std::vector<Point> points(count);
     // P(t) in double (Curve::point, de Casteljau): the profile measures speed; the accuracy
@@ -78,22 +101,35 @@ int run_profile(const ProfileOptions& options) {
   invert_options.off_curve = options.off_curve;
   invert_options.threads = options.threads;
 
+  const bool space = options.dimension == 3;
+  auto count_of = [&](std::size_t c) { return space ? w.points3[c].size() : w.points[c].size(); };
+  // One curve's points, every point or the first `limit`, with or without the stage clocks.
+  auto run = [&](std::size_t c, std::span<PointResult> out, StageSeconds* stages) {
+    if (space) {
+      const std::span<const Point3> p(w.points3[c].data(), out.size());
+      if (stages) invert(w.plans[c], p, out, invert_options, *stages);
+      else invert(w.plans[c], p, out, invert_options);
+    } else {
+      const std::span<const Point> p(w.points[c].data(), out.size());
+      if (stages) invert(w.plans[c], p, out, invert_options, *stages);
+      else invert(w.plans[c], p, out, invert_options);
+    }
+  };
   std::vector<std::vector<PointResult>> results(w.plans.size());
-  for (std::size_t c = 0; c < w.plans.size(); ++c) results[c].resize(w.points[c].size());
+  for (std::size_t c = 0; c < w.plans.size(); ++c) results[c].resize(count_of(c));
   // Three passes over the same points. A short one first, so that neither timed pass pays for
   // the first call's per-thread workspaces and thread pool. The total from a pass without the
   // stage clocks: reading them costs about a tenth of the work at degree 3 (eight reads a batch
   // of 64 points). The stages from a pass with them.
   {
-    const std::size_t warm = std::min<std::size_t>(w.points[0].size(), 1 << 16);
-    invert(w.plans[0], std::span<const Point>(w.points[0].data(), warm),
-           std::span<PointResult>(results[0].data(), warm), invert_options);
+    const std::size_t warm = std::min<std::size_t>(count_of(0), 1 << 16);
+    run(0, std::span<PointResult>(results[0].data(), warm), nullptr);
   }
   const auto start = std::chrono::steady_clock::now();
-  for (std::size_t c = 0; c < w.plans.size(); ++c) invert(w.plans[c], w.points[c], results[c], invert_options);
+  for (std::size_t c = 0; c < w.plans.size(); ++c) run(c, results[c], nullptr);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   StageSeconds stages;  // (into the same results: a point's answer does not depend on the pass)
-  for (std::size_t c = 0; c < w.plans.size(); ++c) invert(w.plans[c], w.points[c], results[c], invert_options, stages);
+  for (std::size_t c = 0; c < w.plans.size(); ++c) run(c, results[c], &stages);
 
   std::size_t total = 0, ok = 0, fast = 0, certified = 0, by_distance = 0, projected = 0;
   double max_dt = 0;
@@ -114,23 +150,23 @@ int run_profile(const ProfileOptions& options) {
 
   if (options.json) {
     std::printf(
-        "{\"points_per_second\": %.6g, \"degree\": %d, \"threads\": %d, \"kernel\": \"%.*s\", \"kind\": \"%s\", "
+        "{\"points_per_second\": %.6g, \"degree\": %d, \"dimension\": %d, \"threads\": %d, \"kernel\": \"%.*s\", \"kind\": \"%s\", "
         "\"points\": %zu, \"curves\": %zu, \"noise\": %g, \"refine\": %s, \"seconds\": %.6g, "
         "\"stages_points_per_second\": {\"form_b\": %.6g, \"kernel\": %.6g, \"read_out\": %.6g, \"refine\": %.6g, "
-        "\"off_curve\": %.6g, \"decide\": %.6g}, \"ok\": %zu, \"fast_path\": %zu, \"certified\": %zu, "
+        "\"off_curve\": %.6g, \"decide\": %.6g, \"space\": %.6g}, \"ok\": %zu, \"fast_path\": %zu, \"certified\": %zu, "
         "\"off_curve_path\": %zu, \"projection\": %zu, \"max_abs_dt_ok\": %.3g}\n",
-        pps, options.degree, threads, static_cast<int>(kernel.size()), kernel.data(), to_string(options.kind), total,
+        pps, options.degree, options.dimension, threads, static_cast<int>(kernel.size()), kernel.data(), to_string(options.kind), total,
         w.plans.size(), options.noise, options.refine ? "true" : "false", wall, rate(stages.form_b),
-        rate(stages.kernel), rate(stages.read_out), rate(stages.refine), rate(stages.off_curve), rate(stages.decide), ok,
-        fast, certified, by_distance, projected, max_dt);
+        rate(stages.kernel), rate(stages.read_out), rate(stages.refine), rate(stages.off_curve), rate(stages.decide),
+        rate(stages.space), ok, fast, certified, by_distance, projected, max_dt);
     return 0;
   }
-  std::printf("bezinv profile: %zu points on %zu %s curves of degree %d, noise %g, refine %s, threads %d, kernel %.*s\n\n",
-              total, w.plans.size(), to_string(options.kind), options.degree, options.noise,
+  std::printf("bezinv profile: %zu points on %zu %s %s curves of degree %d, noise %g, refine %s, threads %d, kernel %.*s\n\n",
+              total, w.plans.size(), space ? "space" : "plane", to_string(options.kind), options.degree, options.noise,
               options.refine ? "on" : "off", threads, static_cast<int>(kernel.size()), kernel.data());
   std::printf("%-34s %14s %10s\n", "stage", "points/s", "share");
   const double work =
-      stages.form_b + stages.kernel + stages.read_out + stages.refine + stages.off_curve + stages.decide;
+      stages.form_b + stages.kernel + stages.read_out + stages.refine + stages.off_curve + stages.decide + stages.space;
   auto line = [&](const char* name, double seconds) {
     std::printf("%-34s %14.4g %9.1f%%\n", name, rate(seconds), work > 0 ? 100 * seconds / work : 0.0);
   };
@@ -140,6 +176,7 @@ int run_profile(const ProfileOptions& options) {
   line("refine + residual", stages.refine);
   line("off the curve, by distance", stages.off_curve);
   line("decide (status, rare paths)", stages.decide);
+  if (space) line("in space (project, check, refine)", stages.space);
   std::printf("%-34s %14.4g   (wall clock, %.3f s)\n\n", "total", pps, wall);
   std::printf("ok %zu of %zu; max |t - t_true| over ok rows %.3g\n", ok, total, max_dt);
   auto percent = [&](std::size_t k) { return total ? 100.0 * static_cast<double>(k) / static_cast<double>(total) : 0.0; };

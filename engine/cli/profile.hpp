@@ -10,6 +10,7 @@ namespace bezinv::cli {
 struct ProfileOptions {
   CurveKind kind = CurveKind::rational_bezier;
   int degree = 3;
+  int dimension = 2;      // 3: space curves (the plane ones lifted off their plane by a random z)
   std::size_t points = 1'000'000;
   int curves = 16;        // distinct random curves the points are spread over (not cache-hot)
   int threads = 0;        // 0 = all cores

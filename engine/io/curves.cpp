@@ -220,28 +220,41 @@ std::vector<double> number_list(const json& curve, const char* field, const std:
   return out;
 }
 
-std::vector<std::array<double, 2>> point_list(const json& curve, const std::string& where) {
+// Control points [x, y] or [x, y, z], all of one dimension (returned in `dimension`).
+std::vector<std::array<double, 3>> point_list(const json& curve, const std::string& where, int& dimension) {
   const json& list = required_field(curve, "points", where);
-  if (!list.is_array()) fail(where, "points: expected an array of [x, y], found " + a_type_name(list));
+  if (!list.is_array()) fail(where, "points: expected an array of [x, y] or [x, y, z], found " + a_type_name(list));
   if (list.empty()) fail(where, "points: empty list");
-  std::vector<std::array<double, 2>> out;
+  std::vector<std::array<double, 3>> out;
   out.reserve(list.size());
+  dimension = 0;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string field = "points[" + std::to_string(i) + "]";
     const json& point = list[i];
-    if (!point.is_array()) fail(where, field + ": expected [x, y], found " + a_type_name(point));
-    if (point.size() != 2)
-      fail(where, field + ": expected [x, y], found an array of " + std::to_string(point.size()));
-    out.push_back({number(point[0], where, field + "[0]"), number(point[1], where, field + "[1]")});
+    if (!point.is_array()) fail(where, field + ": expected [x, y] or [x, y, z], found " + a_type_name(point));
+    if (point.size() != 2 && point.size() != 3)
+      fail(where, field + ": expected [x, y] or [x, y, z], found an array of " + std::to_string(point.size()));
+    if (dimension == 0) dimension = static_cast<int>(point.size());
+    if (static_cast<int>(point.size()) != dimension)
+      fail(where, field + ": " + std::to_string(point.size()) + " coordinates, but points[0] has " +
+                      std::to_string(dimension) + " (a curve is plane or space throughout)");
+    out.push_back({number(point[0], where, field + "[0]"), number(point[1], where, field + "[1]"),
+                   dimension == 3 ? number(point[2], where, field + "[2]") : 0.0});
   }
+  return out;
+}
+
+std::vector<std::array<double, 2>> plane_points(const std::vector<std::array<double, 3>>& points) {
+  std::vector<std::array<double, 2>> out;
+  for (const auto& p : points) out.push_back({p[0], p[1]});
   return out;
 }
 
 // Every field a curve may have, by kind. Any other field is refused rather than ignored: a typo
 // ("weight") or a field of another kind (weights on a polynomial "bezier") would otherwise change
 // nothing and go unnoticed.
-constexpr const char* kAllCurveFields[] = {"id",       "kind",   "points", "weights", "x_num", "x_den", "y_num",
-                                           "y_den",    "matrices", "normals", "tangents", "omegas", "mus"};
+constexpr const char* kAllCurveFields[] = {"id",    "kind",  "points",   "weights", "x_num",    "x_den",  "y_num", "y_den",
+                                           "z_num", "z_den", "matrices", "normals", "tangents", "omegas", "mus"};
 
 void refuse_other_fields(const json& curve, std::initializer_list<const char*> fields, const char* kind,
                          const std::string& where) {
@@ -369,11 +382,14 @@ Curve parse_curve(const json& entry, std::string& where) {
 
   if (kind == "bezier") {
     refuse_other_fields(entry, {"id", "kind", "points"}, "bezier", where);
-    return Curve::bezier(std::move(id), point_list(entry, where));
+    int dimension = 0;
+    const auto points = point_list(entry, where, dimension);
+    return dimension == 3 ? Curve::space_bezier(std::move(id), points) : Curve::bezier(std::move(id), plane_points(points));
   }
   if (kind == "rational_bezier") {
     refuse_other_fields(entry, {"id", "kind", "points", "weights"}, "rational_bezier", where);
-    auto points = point_list(entry, where);
+    int dimension = 0;
+    const auto points = point_list(entry, where, dimension);
     auto weights = number_list(entry, "weights", where);
     if (weights.size() != points.size())
       fail(where, "weights: " + std::to_string(weights.size()) + " weights for " + std::to_string(points.size()) +
@@ -381,32 +397,46 @@ Curve parse_curve(const json& entry, std::string& where) {
     // The curve is stored homogeneously (w_i x_i, w_i y_i); a product beyond the double range
     // would reach validate() as a non-finite x_num, a field the file does not have.
     for (std::size_t i = 0; i < points.size(); ++i)
-      if (!std::isfinite(weights[i] * points[i][0]) || !std::isfinite(weights[i] * points[i][1]))
-        fail(where, "points[" + std::to_string(i) + "]: times weights[" + std::to_string(i) +
-                        "] overflows the double range");
-    return Curve::rational_bezier(std::move(id), points, weights);
+      for (int k = 0; k < dimension; ++k)
+        if (!std::isfinite(weights[i] * points[i][k]))
+          fail(where, "points[" + std::to_string(i) + "]: times weights[" + std::to_string(i) +
+                          "] overflows the double range");
+    return dimension == 3 ? Curve::space_rational_bezier(std::move(id), points, weights)
+                          : Curve::rational_bezier(std::move(id), plane_points(points), weights);
   }
   if (kind == "rational") {
-    refuse_other_fields(entry, {"id", "kind", "x_num", "x_den", "y_num", "y_den"}, "rational", where);
+    refuse_other_fields(entry, {"id", "kind", "x_num", "x_den", "y_num", "y_den", "z_num", "z_den"}, "rational", where);
     auto x_num = number_list(entry, "x_num", where);
     auto x_den = number_list(entry, "x_den", where);
     auto y_num = number_list(entry, "y_num", where);
     auto y_den = number_list(entry, "y_den", where);
+    // A space curve has both z lists, a plane one neither.
+    const bool has_z_num = entry.contains("z_num"), has_z_den = entry.contains("z_den");
+    if (has_z_num != has_z_den) fail(where, std::string(has_z_num ? "z_den" : "z_num") + ": missing (a space curve has z_num and z_den)");
+    std::vector<double> z_num, z_den;
+    if (has_z_num) {
+      z_num = number_list(entry, "z_num", where);
+      z_den = number_list(entry, "z_den", where);
+    }
     // Name the first list that disagrees with x_num: that is the field to fix.
-    const std::pair<const char*, std::size_t> others[] = {
-        {"x_den", x_den.size()}, {"y_num", y_num.size()}, {"y_den", y_den.size()}};
+    const std::pair<const char*, std::size_t> others[] = {{"x_den", x_den.size()}, {"y_num", y_num.size()},
+                                                          {"y_den", y_den.size()}, {"z_num", has_z_num ? z_num.size() : x_num.size()},
+                                                          {"z_den", has_z_num ? z_den.size() : x_num.size()}};
     for (const auto& [field, size] : others)
       if (size != x_num.size())
         fail(where, std::string(field) + ": " + std::to_string(size) + " coefficients, but x_num has " +
-                        std::to_string(x_num.size()) + " (the four lists need one common degree)");
+                        std::to_string(x_num.size()) + " (the lists need one common degree)");
+    if (has_z_num)
+      return Curve::space_rational(std::move(id), std::move(x_num), std::move(x_den), std::move(y_num), std::move(y_den),
+                                   std::move(z_num), std::move(z_den));
     return Curve::rational(std::move(id), std::move(x_num), std::move(x_den), std::move(y_num), std::move(y_den));
   }
   if (kind == "matrix_weighted_bezier") {
     const MatrixWeightedCurve m = parse_matrix_weighted(entry, id, where);
-    if (m.dimension != 2)
-      fail(where, "a space curve (3D points): bezinv inverts plane curves only; `bezinv convert` converts it");
     try {
-      return plane_curve(convert(m), std::move(id));
+      Curve converted = rational_curve(convert(m), std::move(id));
+      validate(converted);  // degree d n: a space curve of degree above 10 converts past kMaxDegree
+      return converted;
     } catch (const CurveError& e) {
       std::string_view message(e.what());
       const std::string own_prefix = "curve " + quoted_excerpt(m.id) + ": ";

@@ -17,6 +17,10 @@ inline constexpr const char* kXNotANumber = "x is not a number";
 inline constexpr const char* kYNotANumber = "y is not a number";
 inline constexpr const char* kXNotFinite = "x is not finite";
 inline constexpr const char* kYNotFinite = "y is not finite";
+inline constexpr const char* kZNotANumber = "z is not a number";
+inline constexpr const char* kZNotFinite = "z is not finite";
+inline constexpr const char* kZMissing = "no z for a point of a space curve";
+inline constexpr const char* kZForPlaneCurve = "z given for a point of a plane curve";
 
 std::unique_ptr<PointReader> open_points_csv(const std::string& path, const std::vector<Curve>& curves);
 std::unique_ptr<PointReader> open_points_npy(const std::string& path, const std::vector<Curve>& curves,

@@ -77,6 +77,7 @@ class CurveLookup {
  public:
   explicit CurveLookup(const std::vector<Curve>& curves) : count_(curves.size()) {
     index_of_id_.reserve(curves.size());
+    for (const Curve& c : curves) space_.push_back(c.dimension() == 3);
     // emplace keeps the first of equal ids (read_curves_json refuses duplicates anyway).
     for (std::size_t i = 0; i < curves.size(); ++i) index_of_id_.emplace(curves[i].id, static_cast<int>(i));
   }
@@ -126,6 +127,9 @@ class CurveLookup {
 
   std::unordered_map<std::string_view, int> index_of_id_;
   std::size_t count_;
+ public:
+  std::vector<bool> space_;  // curve i is a space curve (its points need z)
+ private:
   bool has_last_ = false;
   std::string last_field_;
   int last_curve_ = -1;
@@ -163,7 +167,8 @@ class CsvPointReader final : public PointReader {
         if (first_blank_line_ == 0) first_blank_line_ = line_number_;
         continue;
       }
-      if (first_blank_line_ != 0) fail(path_, first_blank_line_, "expected 3 fields (curve,x,y), found 1 (blank line)");
+      if (first_blank_line_ != 0)
+        fail(path_, first_blank_line_, "expected " + expected_fields() + ", found 1 (blank line)");
       rows[count++] = parse_row(line);
     }
     progress_.points += count;
@@ -237,8 +242,14 @@ class CsvPointReader final : public PointReader {
       fail(path_, 1, "empty file (expected the header 'curve,x,y')");
     }
     const std::size_t count = split(header);
-    if (count != 3 || fields_[0] != "curve" || fields_[1] != "x" || fields_[2] != "y")
-      fail(path_, 1, "header must be 'curve,x,y', found " + quoted_excerpt(header));
+    if ((count != 3 && count != 4) || fields_[0] != "curve" || fields_[1] != "x" || fields_[2] != "y" ||
+        (count == 4 && fields_[3] != "z"))
+      fail(path_, 1, "header must be 'curve,x,y' or 'curve,x,y,z', found " + quoted_excerpt(header));
+    columns_ = count;
+  }
+
+  std::string expected_fields() const {
+    return columns_ == 4 ? "4 fields (curve,x,y,z)" : "3 fields (curve,x,y)";
   }
 
   // Splits a line into fields_ (the first three; views into the line or into unquoted_, valid
@@ -252,7 +263,7 @@ class CsvPointReader final : public PointReader {
       std::size_t count = 0, start = 0;
       while (true) {
         const std::size_t comma = line.find(',', start);
-        if (count < 3) fields_[count] = trimmed(line.substr(start, comma == std::string_view::npos ? comma : comma - start));
+        if (count < 4) fields_[count] = trimmed(line.substr(start, comma == std::string_view::npos ? comma : comma - start));
         ++count;
         if (comma == std::string_view::npos) return count;
         start = comma + 1;
@@ -264,7 +275,7 @@ class CsvPointReader final : public PointReader {
       std::string_view field;
       if (i < line.size() && line[i] == '"') {
         const std::size_t open = i++;
-        std::string& text = unquoted_[std::min<std::size_t>(count, 3)];
+        std::string& text = unquoted_[std::min<std::size_t>(count, 4)];
         text.clear();
         bool closed = false;
         while (!closed) {
@@ -293,7 +304,7 @@ class CsvPointReader final : public PointReader {
         field = trimmed(line.substr(i, comma == std::string_view::npos ? comma : comma - i));
         i = comma == std::string_view::npos ? line.size() : comma;
       }
-      if (count < 3) fields_[count] = field;
+      if (count < 4) fields_[count] = field;
       ++count;
       if (i >= line.size()) return count;
       ++i;  // the comma
@@ -302,8 +313,8 @@ class CsvPointReader final : public PointReader {
 
   PointRow parse_row(std::string_view line) {
     const std::size_t count = split(line);
-    if (count != 3)
-      fail(path_, line_number_, "expected 3 fields (curve,x,y), found " + std::to_string(count) + ": " + quoted_excerpt(line));
+    if (count != columns_)
+      fail(path_, line_number_, "expected " + expected_fields() + ", found " + std::to_string(count) + ": " + quoted_excerpt(line));
 
     PointRow row;
     const char* reason = "";
@@ -321,6 +332,18 @@ class CsvPointReader final : public PointReader {
     }
     if (x == Parsed::not_a_number) row.point.x = PointResult::nan;
     if (y == Parsed::not_a_number) row.point.y = PointResult::nan;
+    // z: given for a space curve's point, empty (or no column) for a plane curve's.
+    const bool has_z = columns_ == 4 && !fields_[3].empty();
+    if (has_z) {
+      const Parsed z = parse_coordinate(fields_[3], row.z);
+      if (z == Parsed::not_a_number) row.z = PointResult::nan;
+      if (*row.reason == '\0' && z != Parsed::ok) row.reason = z == Parsed::not_a_number ? kZNotANumber : kZNotFinite;
+    }
+    if (*row.reason == '\0' && row.curve >= 0) {
+      const bool space = lookup_.space_[static_cast<std::size_t>(row.curve)];
+      if (space && !has_z) row.reason = kZMissing;
+      if (!space && has_z) row.reason = kZForPlaneCurve;
+    }
     if (*row.reason != '\0') row.curve = -1;
     return row;
   }
@@ -332,8 +355,9 @@ class CsvPointReader final : public PointReader {
   bool at_end_ = false;
   std::size_t line_number_ = 0;
   std::size_t first_blank_line_ = 0;  // of the blank lines since the last row; 0: none
-  std::string_view fields_[3];          // of the line last split
-  std::string unquoted_[4];             // quoted fields without their quotes; [3]: fields past the third
+  std::size_t columns_ = 3;             // 3 (curve,x,y) or 4 (curve,x,y,z), from the header
+  std::string_view fields_[4];          // of the line last split
+  std::string unquoted_[5];             // quoted fields without their quotes; [4]: fields past the fourth
   CurveLookup lookup_;
   ReadProgress progress_;
 };

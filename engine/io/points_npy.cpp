@@ -114,16 +114,23 @@ class NpyPointReader final : public PointReader {
     const NpyHeader& header = points_.header();
     if (header.descr != "'<f8'") fail_header(path, "dtype " + escaped_excerpt(header.descr) + " is not '<f8' (float64)");
     if (header.fortran_order) fail_header(path, "fortran_order is True; only C order is read");
-    if (header.shape.size() != 2 || header.shape[1] != 2)
-      fail_header(path, "shape " + shape_text(header.shape) + " is not (N, 2)");
+    if (header.shape.size() != 2 || (header.shape[1] != 2 && header.shape[1] != 3))
+      fail_header(path, "shape " + shape_text(header.shape) + " is not (N, 2) or (N, 3)");
+    width_ = static_cast<std::size_t>(header.shape[1]);
     total_ = header.shape[0];
     progress_.points_total = total_;
-    progress_.bytes_total = header.data_offset + points_.expect_data(total_, 16);
+    progress_.bytes_total = header.data_offset + points_.expect_data(total_, 8 * width_);
+    for (const Curve& c : curves) space_.push_back(c.dimension() == 3);
 
     if (!selection.curve.empty() && !selection.index_path.empty())
       throw InputError(path + ": give --curve or --curve-index, not both");
     if (!selection.curve.empty()) {
       curve_ = selected_curve(path, curves, selection.curve);
+      // One curve for every row: a width that is not its dimension is the whole file's mistake.
+      const int dimension = curves[static_cast<std::size_t>(curve_)].dimension();
+      if (static_cast<int>(width_) != dimension)
+        fail_header(path, "shape " + shape_text(header.shape) + ": curve " + quoted_excerpt(curves[static_cast<std::size_t>(curve_)].id) +
+                              " is a " + (dimension == 3 ? "space curve, whose points are (N, 3)" : "plane curve, whose points are (N, 2)"));
     } else if (!selection.index_path.empty()) {
       indices_ = std::make_unique<NpyFile>(selection.index_path);
       const NpyHeader& index_header = indices_->header();
@@ -145,7 +152,7 @@ class NpyPointReader final : public PointReader {
   std::size_t read(std::span<PointRow> rows) override {
     const std::size_t count = static_cast<std::size_t>(std::min<std::uint64_t>(rows.size(), total_ - progress_.points));
     if (count == 0) return 0;
-    coordinates_.resize(2 * count);
+    coordinates_.resize(width_ * count);
     read_npy_data(points_.file(), points_.path(), coordinates_.data(), coordinates_.size() * sizeof(double));
     if (indices_) {
       index_buffer_.resize(count * index_bytes_);
@@ -153,15 +160,19 @@ class NpyPointReader final : public PointReader {
     }
     for (std::size_t i = 0; i < count; ++i) {
       PointRow& row = rows[i];
-      row.point = {coordinates_[2 * i], coordinates_[2 * i + 1]};
+      row.point = {coordinates_[width_ * i], coordinates_[width_ * i + 1]};
+      row.z = width_ == 3 ? coordinates_[width_ * i + 2] : PointResult::nan;
       row.reason = "";
       row.curve = indices_ ? curve_at(i, row.reason) : curve_;
       if (row.curve >= 0 && !std::isfinite(row.point.x)) row.reason = kXNotFinite;
       else if (row.curve >= 0 && !std::isfinite(row.point.y)) row.reason = kYNotFinite;
+      else if (row.curve >= 0 && (width_ == 3) != space_[static_cast<std::size_t>(row.curve)])
+        row.reason = width_ == 3 ? kZForPlaneCurve : kZMissing;  // --curve-index: a row of the other dimension
+      else if (row.curve >= 0 && width_ == 3 && !std::isfinite(row.z)) row.reason = kZNotFinite;
       if (*row.reason != '\0') row.curve = -1;
     }
     progress_.points += count;
-    progress_.bytes = points_.header().data_offset + progress_.points * 16;
+    progress_.bytes = points_.header().data_offset + progress_.points * 8 * width_;
     return count;
   }
 
@@ -191,6 +202,8 @@ class NpyPointReader final : public PointReader {
   NpyFile points_;
   std::size_t curve_count_;
   std::uint64_t total_ = 0;
+  std::size_t width_ = 2;             // 2 (x, y) or 3 (x, y, z) doubles a row
+  std::vector<bool> space_;           // curve i is a space curve
   int curve_ = -1;                    // --curve
   std::unique_ptr<NpyFile> indices_;  // --curve-index
   std::size_t index_bytes_ = 0;

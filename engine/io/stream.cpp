@@ -49,15 +49,18 @@ StreamSummary stream(PointReader& reader, ResultWriter& writer, std::span<const 
   std::vector<PointRow> rows;
   std::vector<int> curve_of;
   std::vector<Point> points;
+  std::vector<double> z;  // the space curves' points' third coordinate
   std::vector<PointResult> results;
   StreamSummary summary;
   while (const std::size_t count = read_chunk(reader, rows, chunk_points)) {
     curve_of.resize(count);
     points.resize(count);
+    z.resize(count);
     results.resize(count);
     for (std::size_t i = 0; i < count; ++i) {
       curve_of[i] = rows[i].curve;
       points[i] = rows[i].point;
+      z[i] = rows[i].z;
       results[i] = PointResult{};
       if (rows[i].curve < 0) {
         // invert() leaves rows with a negative curve as set here.
@@ -72,7 +75,8 @@ StreamSummary stream(PointReader& reader, ResultWriter& writer, std::span<const 
     for (std::size_t begin = 0; begin < count; begin += kProgressSlice) {
       const std::size_t size = std::min(kProgressSlice, count - begin);
       invert(plans, std::span<const int>(curve_of).subspan(begin, size),
-             std::span<const Point>(points).subspan(begin, size), std::span(results).subspan(begin, size), options);
+             std::span<const Point>(points).subspan(begin, size), std::span<const double>(z).subspan(begin, size),
+             std::span(results).subspan(begin, size), options);
       progress.points = summary.points + begin + size;
       if (on_progress) on_progress(progress);
     }

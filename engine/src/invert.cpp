@@ -101,13 +101,27 @@ PointResult invert_point(const InversionPlan& plan, Point3 point, const InvertOp
   return r;
 }
 
-void invert(const InversionPlan& plan, std::span<const Point3> points, std::span<PointResult> results,
-            const InvertOptions& options) {
+namespace {
+
+void invert_space(const InversionPlan& plan, std::span<const Point3> points, std::span<PointResult> results,
+                  const InvertOptions& options, StageSeconds* stages) {
   require_dimension(plan, 3);
   std::vector<Point> xy(points.size());
   std::vector<double> z(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) xy[i] = {points[i].x, points[i].y}, z[i] = points[i].z;
-  detail::invert_space_curve(detail::plan_data(plan), xy, z, results, options, nullptr);
+  detail::invert_space_curve(detail::plan_data(plan), xy, z, results, options, stages);
+}
+
+}  // namespace
+
+void invert(const InversionPlan& plan, std::span<const Point3> points, std::span<PointResult> results,
+            const InvertOptions& options) {
+  invert_space(plan, points, results, options, nullptr);
+}
+
+void invert(const InversionPlan& plan, std::span<const Point3> points, std::span<PointResult> results,
+            const InvertOptions& options, StageSeconds& stages) {
+  invert_space(plan, points, results, options, &stages);
 }
 
 void invert(std::span<const InversionPlan> plans, std::span<const int> curve_of, std::span<const Point> points,

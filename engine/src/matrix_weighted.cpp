@@ -188,4 +188,13 @@ Curve plane_curve(const ConvertedCurve& converted, std::string id) {
   return Curve::rational(std::move(id), x, converted.weights, y, converted.weights);
 }
 
+Curve rational_curve(const ConvertedCurve& converted, std::string id) {
+  Curve curve = plane_curve(converted, std::move(id));
+  if (converted.dimension == 3) {
+    for (const Vector3& q : converted.numerators) curve.z_num.push_back(q[2]);
+    curve.z_den = converted.weights;
+  }
+  return curve;
+}
+
 }  // namespace bezinv

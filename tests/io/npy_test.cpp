@@ -135,7 +135,10 @@ TEST_F(NpyPoints, HeaderErrorsNameTheFileAndTheField) {
   expect_refused("fortran.npy", npy_bytes(npy_dict("'<f8'", "(3, 2)", "True"), data), a,
                  {"fortran.npy: header: fortran_order is True"});
   expect_refused("flat.npy", npy_bytes(npy_dict("'<f8'", "(6,)"), data), a, {"flat.npy: header: shape (6,) is not (N, 2)"});
-  expect_refused("wide.npy", npy_bytes(npy_dict("'<f8'", "(2, 3)"), data), a, {"wide.npy: header: shape (2, 3) is not (N, 2)"});
+  expect_refused("wide.npy", npy_bytes(npy_dict("'<f8'", "(1, 4)"), data), a, {"wide.npy: header: shape (1, 4) is not (N, 2) or (N, 3)"});
+  // (N, 3) is a space curve's points: with --curve naming a plane curve, the whole file is refused.
+  expect_refused("space.npy", npy_bytes(npy_dict("'<f8'", "(2, 3)"), data), a,
+                 {"space.npy: header: shape (2, 3): curve", "is a plane curve, whose points are (N, 2)"});
   expect_refused("short.npy", npy_bytes(npy_dict("'<f8'", "(4, 2)"), data), a,
                  {"short.npy: data: truncated", "(4, 2)", "needs 64 bytes", "the file has 48"});
   expect_refused("long.npy", npy_bytes(npy_dict("'<f8'", "(2, 2)"), data), a, {"long.npy: data: 16 bytes after the end"});

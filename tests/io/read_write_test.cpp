@@ -161,9 +161,11 @@ TEST_F(IoCurvesJson, RefusesPointsThatAreNotXYPairsOfNumbers) {
   expect_refused(R"({"curves": [{"id": "a", "kind": "bezier"}]})", {"curves[0] (id \"a\")", "points: missing"});
   expect_refused(R"({"curves": [{"id": "a", "kind": "bezier", "points": []}]})", {"points: empty list"});
   expect_refused(R"({"curves": [{"id": "a", "kind": "bezier", "points": [[0, 0], [1, 2, 3]]}]})",
-                 {"curves[0] (id \"a\")", "points[1]: expected [x, y], found an array of 3"});
+                 {"curves[0] (id \"a\")", "points[1]: 3 coordinates, but points[0] has 2"});
+  expect_refused(R"({"curves": [{"id": "a", "kind": "bezier", "points": [[0, 0], [1, 2, 3, 4]]}]})",
+                 {"curves[0] (id \"a\")", "points[1]: expected [x, y] or [x, y, z], found an array of 4"});
   expect_refused(R"({"curves": [{"id": "a", "kind": "bezier", "points": [[0, 0], 5]}]})",
-                 {"points[1]: expected [x, y], found a number"});
+                 {"points[1]: expected [x, y] or [x, y, z], found a number"});
   expect_refused(R"({"curves": [{"id": "a", "kind": "bezier", "points": [[0, 0], ["1", 2]]}]})",
                  {"points[1][0]: expected a number, found a string"});
   expect_refused(R"({"curves": [{"id": "a", "kind": "bezier", "points": [[0, 0], [1, null]]}]})",
@@ -359,7 +361,7 @@ TEST_F(IoPointsCsv, RefusesUnreadableOrEmptyFiles) {
 TEST_F(IoPointsCsv, RefusesAMissingOrWrongHeader) {
   expect_refused("a,1,2\nb,3,4\n", {":1:", "header must be 'curve,x,y'", "\"a,1,2\""});
   expect_refused("curve,x\na,1\n", {":1:", "header"});
-  expect_refused("curve,x,y,z\na,1,2,3\n", {":1:", "header"});
+  expect_refused("curve,x,y,w\na,1,2,3\n", {":1:", "header must be 'curve,x,y' or 'curve,x,y,z'"});
   expect_refused("curve,y,x\na,1,2\n", {":1:", "header"});
   expect_refused("Curve,X,Y\na,1,2\n", {":1:", "header"});
 }

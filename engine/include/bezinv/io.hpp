@@ -4,11 +4,14 @@
 //                {"id": "a", "kind": "bezier", "points": [[x,y], ...]}
 //                {"id": "b", "kind": "rational_bezier", "points": [[x,y], ...], "weights": [w0, ...]}
 //                {"id": "c", "kind": "rational", "x_num": [...], "x_den": [...], "y_num": [...], "y_den": [...]}
+//                space curves alike: points [x,y,z]; kind rational with "z_num" and "z_den" too
 //                {"id": "m", "kind": "matrix_weighted_bezier", "points": [...], then one of "matrices": [M_0, ...];
 //                 "normals", "omegas", "mus" (Yang's eq. (2)); "tangents", "omegas", "mus" (eq. (3))}
-//   POINTS.csv   header `curve,x,y`; curve is an id or a 0-based index into the list
-//   POINTS.npy   float64 '<f8', shape (N, 2), C order: x, y per row; the curve comes from a
-//                CurveSelection (one curve for all, or an int32/int64 (N,) .npy of curve indices)
+//   POINTS.csv   header `curve,x,y` or `curve,x,y,z`; curve is an id or a 0-based index into the
+//                list; z is given for a space curve's point and empty (or absent) for a plane one's
+//   POINTS.npy   float64 '<f8', shape (N, 2) or (N, 3), C order: x, y (, z) per row; the curve comes
+//                from a CurveSelection (one curve for all, or an int32/int64 (N,) .npy of curve
+//                indices); a row's width must match its curve's dimension
 //   OUT.csv      header, then one row per input point, in input order
 //   OUT.npy      structured (N,) array: t, residual, t2, sigma_min, sigma_next '<f8', status, path 'u1'
 //                (the codes are the enum values of Status and Path in invert.hpp)
@@ -41,8 +44,8 @@ class InputError : public std::runtime_error {
 
 // Parses and validates every curve. Throws InputError (malformed JSON, missing field, empty list,
 // duplicate id, a curve failing validate()). A plane matrix-weighted curve comes back converted
-// (bezinv/matrix_weighted.hpp: kind rational, degree 2n, the same parameter t); a space one is an
-// InputError (space curves are converted by `bezinv convert`, not inverted).
+// (bezinv/matrix_weighted.hpp: kind rational, degree 2n, the same parameter t), a space one too
+// (degree 3n, with z).
 std::vector<Curve> read_curves_json(const std::string& path);
 
 // The matrix-weighted curves of CURVES.json as written (plane and space), at their positions in
@@ -60,6 +63,7 @@ struct PointRow {
   int curve = -1;
   Point point{PointResult::nan, PointResult::nan};
   const char* reason = "";
+  double z = PointResult::nan;  // a space curve's point's third coordinate
 };
 
 // Where the points of a .npy file find their curve (a CSV names it in its `curve` column, and

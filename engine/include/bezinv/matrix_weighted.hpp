@@ -54,5 +54,7 @@ Vector3 matrix_weighted_point(const MatrixWeightedCurve& curve, double t);
 // the weights as one common denominator (the homogeneous form keeps the digits Q_k loses where a
 // weight is tiny against its terms).
 Curve plane_curve(const ConvertedCurve& converted, std::string id);
+// The same in the converted curve's dimension (a space curve: z_num, z_den too).
+Curve rational_curve(const ConvertedCurve& converted, std::string id);
 
 }  // namespace bezinv

@@ -15,11 +15,15 @@ struct StageSeconds {
   double refine = 0;    // Newton to full precision, and the residual
   double off_curve = 0; // off-curve points answered by distance alone (nearest point, clearance)
   double decide = 0;    // status, and the rare paths (double point, Sylvester, nearest point)
+  double space = 0;     // space curves: projecting the points, checking and refining each answer in space
 };
 
 // invert(plan, points, results, options), adding the time of each stage to `stages`. The answers
 // are the same; the clocks cost a little time.
 void invert(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
+            const InvertOptions& options, StageSeconds& stages);
+// The same for a space curve's points.
+void invert(const InversionPlan& plan, std::span<const Point3> points, std::span<PointResult> results,
             const InvertOptions& options, StageSeconds& stages);
 
 }  // namespace bezinv

@@ -6,6 +6,7 @@
 #include "formula/homogeneous_curve.hpp"
 #include "formula/null_space.hpp"
 #include "plan_data.hpp"
+#include "quote.hpp"
 
 namespace bezinv {
 namespace {
@@ -29,6 +30,8 @@ Eigen::MatrixXd implicit_system(const detail::HomogeneousCurve& curve, int e) {
 }  // namespace
 
 ImplicitEquation implicit_equation(const InversionPlan& plan) {
+  if (plan.dimension() != 2)
+    throw FormulaError("curve " + detail::quoted_excerpt(plan.curve().id) + " is a space curve: no implicit equation");
   const detail::PlanData& data = detail::plan_data(plan);
   const detail::FrameCurve framed = detail::formula_curve(data);
   const detail::HomogeneousCurve& curve = framed.curve;

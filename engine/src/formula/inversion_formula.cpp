@@ -11,6 +11,7 @@
 #include "formula/homogeneous_curve.hpp"
 #include "formula/null_space.hpp"
 #include "plan_data.hpp"
+#include "quote.hpp"
 
 namespace bezinv {
 namespace {
@@ -36,8 +37,21 @@ int solution_dimension(int n) {
 
 }  // namespace
 
+namespace {
+
+// The formulae are Wang & Joe's, for plane curves. A space curve's plan holds its projection's
+// plane plan (engine/src/space/), whose formula would say nothing about the curve itself.
+const detail::PlanData& plane_plan_data(const InversionPlan& plan) {
+  if (plan.dimension() != 2)
+    throw FormulaError("curve " + detail::quoted_excerpt(plan.curve().id) +
+                       " is a space curve: inversion formulae, implicit equations and singular points are for plane curves");
+  return detail::plan_data(plan);
+}
+
+}  // namespace
+
 InversionFormula::InversionFormula(const InversionPlan& plan, const FormulaChoice& choice)
-    : InversionFormula(detail::plan_data(plan), choice) {}
+    : InversionFormula(plane_plan_data(plan), choice) {}
 
 InversionFormula::InversionFormula(const detail::PlanData& data, const FormulaChoice& choice) {
   if (!data.usable) throw FormulaError(std::string("no inversion formula: ") + data.reason);

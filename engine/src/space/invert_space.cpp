@@ -1,6 +1,9 @@
 #include "space/invert_space.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <functional>
+#include <mutex>
 #include <cmath>
 #include <vector>
 
@@ -13,10 +16,22 @@ void invert_space_curve(const PlanData& plan, std::span<const Point> points, std
                         std::span<PointResult> results, const InvertOptions& options, StageSeconds* stages) {
   const SpaceData& space = *plan.space;
   const std::size_t count = points.size();
+  // Seconds of work of steps 1 and 3, summed over the ranges (threads) that did them.
+  std::mutex clock_mutex;
+  auto timed = [&](const std::function<void(std::size_t, std::size_t)>& body) {
+    return [&, body](std::size_t begin, std::size_t end) {
+      if (!stages) return body(begin, end);
+      const auto start = std::chrono::steady_clock::now();
+      body(begin, end);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const std::lock_guard<std::mutex> lock(clock_mutex);
+      stages->space += seconds;
+    };
+  };
   // 1. The projected points, u = a . (P - c), v = b . (P - c) (NaN where a coordinate is not
   //    finite: the plane engine answers those invalid_input).
   std::vector<Point> projected(count);
-  for_each_range(count, options, [&](std::size_t begin, std::size_t end) {
+  for_each_range(count, options, timed([&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const double p[3] = {points[i].x, points[i].y, z[i]};
       if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) {
@@ -30,7 +45,7 @@ void invert_space_curve(const PlanData& plan, std::span<const Point> points, std
       }
       projected[i] = {u, v};
     }
-  });
+  }));
   // 2. The plane engine at the same tolerance in input units (relative to the space curve's box).
   //    Projected rows are checked in space, so an off_curve row is the nearest point's there.
   InvertOptions plane = options;
@@ -41,10 +56,10 @@ void invert_space_curve(const PlanData& plan, std::span<const Point> points, std
   // 3. Every answer in space.
   const double tolerance = std::max(options.relative_tolerance * (space.diagonal * space.inverse_scale),
                                     space.normalized_resolution);
-  for_each_range(count, options, [&](std::size_t begin, std::size_t end) {
+  for_each_range(count, options, timed([&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
       space_answer(space, space_normalize(space, points[i].x, points[i].y, z[i]), tolerance, options, results[i]);
-  });
+  }));
 }
 
 }  // namespace bezinv::detail

@@ -92,22 +92,25 @@ SpacePolynomial::SpacePolynomial(std::vector<double> coefficients) : c(std::move
   for (int i = 0; i <= n; ++i) binomial_c[i] = c[i] * binomial(n, i);
 }
 
-double SpacePolynomial::operator()(double t) const {
-  const int n = static_cast<int>(c.size()) - 1;
-  if (n <= 0) return c.empty() ? 0.0 : c[0];
-  if (t >= 0.0 && t <= 0.5) {
-    const double s = t / (1 - t);
-    double v = binomial_c[n];
+double SpacePolynomial::horner(bool forward, double s) const {
+  const int n = degree();
+  double v = forward ? binomial_c[n] : binomial_c[0];
+  if (forward)
     for (int i = n - 1; i >= 0; --i) v = v * s + binomial_c[i];
-    return v * std::pow(1 - t, n);
-  }
-  if (t > 0.5 && t <= 1.0) {
-    const double s = (1 - t) / t;
-    double v = binomial_c[0];
+  else
     for (int i = 1; i <= n; ++i) v = v * s + binomial_c[i];
-    return v * std::pow(t, n);
-  }
-  return bernstein_value(c, t);
+  return v;
+}
+
+double SpacePolynomial::operator()(double t) const {
+  const int n = degree();
+  if (n <= 0) return c.empty() ? 0.0 : c[0];
+  if (!(t >= 0.0 && t <= 1.0)) return bernstein_value(c, t);
+  const bool forward = t <= 0.5;
+  const double u = forward ? 1 - t : t;
+  double power = 1;
+  for (int i = 0; i < n; ++i) power *= u;
+  return horner(forward, forward ? t / u : (1 - t) / u) * power;
 }
 
 SpaceData make_space_data(const Curve& curve) {
@@ -184,6 +187,17 @@ SpaceData make_space_data(const Curve& curve) {
     space.num[k] = SpacePolynomial(num);
     space.den[k] = SpacePolynomial(den);
   }
+  for (int r = 0; r < 3; ++r) {
+    const auto& nums_r = r == 0 ? space.num : r == 1 ? space.d_num : space.dd_num;
+    const auto& dens_r = r == 0 ? space.den : r == 1 ? space.d_den : space.dd_den;
+    const int m = nums_r[0].degree();
+    space.interleaved[r].assign(8 * static_cast<std::size_t>(m + 1), 0.0);
+    for (int i = 0; i <= m; ++i)
+      for (int k = 0; k < 3; ++k) {
+        space.interleaved[r][8 * i + k] = nums_r[k].binomial_c[i];
+        space.interleaved[r][8 * i + 3 + k] = dens_r[k].binomial_c[i];
+      }
+  }
   const int samples = sample_count(n);
   space.samples.resize(3 * static_cast<std::size_t>(samples));
   for (int j = 0; j < samples; ++j) {
@@ -252,11 +266,79 @@ Curve projected_curve(const SpaceData& space) {
   return flat;
 }
 
+namespace {
+
+// The values at t of the polynomials `which` of the three coordinates, by Horner's rule with the
+// powers of u shared (t in [0, 1]), by de Casteljau elsewhere.
+class SpaceEvaluation {
+ public:
+  SpaceEvaluation(const SpaceData& space, double t) : inside_(t >= 0.0 && t <= 1.0), t_(t) {
+    if (!inside_) return;
+    forward_ = t <= 0.5;
+    const double u = forward_ ? 1 - t : t;
+    s_ = forward_ ? t / u : (1 - t) / u;
+    powers_[0] = 1;
+    for (int m = 1; m <= space.degree && m < static_cast<int>(powers_.size()); ++m) powers_[m] = powers_[m - 1] * u;
+  }
+  double operator()(const SpacePolynomial& p) const {
+    const int m = p.degree();
+    if (m <= 0) return p.c.empty() ? 0.0 : p.c[0];
+    return inside_ ? p.horner(forward_, s_) * powers_[m] : bernstein_value(p.c, t_);
+  }
+
+ private:
+  bool inside_, forward_ = true;
+  double t_, s_ = 0;
+  std::array<double, kMaxDegree + 1> powers_;  // u^m, m = 0..degree (the rest unset)
+};
+
+}  // namespace
+
+namespace {
+
+// The six polynomials num x, y, z, den x, y, z of derivative order r at t in [0, 1], side by side
+// (SpaceData::interleaved): Horner's rule in s = t / (1 - t) (or (1 - t) / t past 1/2), times u^m.
+void interleaved_values(const SpaceData& space, int r, bool forward, double s, double power, double* out) {
+  const std::vector<double>& c = space.interleaved[r];
+  const int m = static_cast<int>(c.size() / 8) - 1;
+  double v[8];
+  if (forward) {
+    for (int j = 0; j < 8; ++j) v[j] = c[8 * m + j];
+    for (int i = m - 1; i >= 0; --i)
+      for (int j = 0; j < 8; ++j) v[j] = v[j] * s + c[8 * i + j];
+  } else {
+    for (int j = 0; j < 8; ++j) v[j] = c[j];
+    for (int i = 1; i <= m; ++i)
+      for (int j = 0; j < 8; ++j) v[j] = v[j] * s + c[8 * i + j];
+  }
+  for (int j = 0; j < 6; ++j) out[j] = v[j] * power;
+}
+
+}  // namespace
+
 SpaceJet space_jet(const SpaceData& space, double t) {
+  double value[3][6];  // [derivative order][num x, y, z, den x, y, z]
+  if (t >= 0.0 && t <= 1.0) {
+    const bool forward = t <= 0.5;
+    const double u = forward ? 1 - t : t, s = forward ? t / u : (1 - t) / u;
+    // u^(n-2), u^(n-1), u^n (a power below 0 is of a zero polynomial: 1 does)
+    const int n = space.degree;
+    double power = 1;
+    for (int i = 0; i < n - 2; ++i) power *= u;
+    const double powers[3] = {n >= 2 ? power * u * u : n == 1 ? u : 1.0, n >= 2 ? power * u : 1.0, power};
+    for (int r = 0; r < 3; ++r) interleaved_values(space, r, forward, s, powers[r], value[r]);
+  } else {
+    const SpaceEvaluation at(space, t);
+    for (int k = 0; k < 3; ++k) {
+      value[0][k] = at(space.num[k]), value[0][3 + k] = at(space.den[k]);
+      value[1][k] = at(space.d_num[k]), value[1][3 + k] = at(space.d_den[k]);
+      value[2][k] = at(space.dd_num[k]), value[2][3 + k] = at(space.dd_den[k]);
+    }
+  }
   SpaceJet j;
   for (int k = 0; k < 3; ++k) {
-    const double N = space.num[k](t), D = space.den[k](t), N1 = space.d_num[k](t), D1 = space.d_den[k](t),
-                 N2 = space.dd_num[k](t), D2 = space.dd_den[k](t);
+    const double N = value[0][k], D = value[0][3 + k], N1 = value[1][k], D1 = value[1][3 + k], N2 = value[2][k],
+                 D2 = value[2][3 + k];
     const double x = N / D, x1 = (N1 - D1 * x) / D;
     j.p[k] = x;
     j.dp[k] = x1;
@@ -266,9 +348,10 @@ SpaceJet space_jet(const SpaceData& space, double t) {
 }
 
 double space_distance(const SpaceData& space, const std::array<double, 3>& point, double t) {
+  const SpaceEvaluation at(space, t);
   double d2 = 0;
   for (int k = 0; k < 3; ++k) {
-    const double e = space.num[k](t) / space.den[k](t) - point[k];
+    const double e = at(space.num[k]) / at(space.den[k]) - point[k];
     d2 += e * e;
   }
   return std::sqrt(d2);
@@ -276,10 +359,13 @@ double space_distance(const SpaceData& space, const std::array<double, 3>& point
 
 SpaceRefined space_refine(const SpaceData& space, const std::array<double, 3>& point, double t0, bool on_segment) {
   double t = on_segment ? std::clamp(t0, 0.0, 1.0) : t0;
-  SpaceRefined best{t, space_distance(space, point, t)};
+  SpaceJet j = space_jet(space, t);
+  auto distance_of = [&](const SpaceJet& jet) {
+    return std::hypot(jet.p[0] - point[0], jet.p[1] - point[1], jet.p[2] - point[2]);
+  };
+  SpaceRefined best{t, distance_of(j)};
   if (!std::isfinite(best.distance)) return best;
   for (int iteration = 0; iteration < 60; ++iteration) {
-    const SpaceJet j = space_jet(space, t);
     double g = 0, speed2 = 0, curvature = 0;
     for (int k = 0; k < 3; ++k) {
       const double e = j.p[k] - point[k];
@@ -291,17 +377,25 @@ SpaceRefined space_refine(const SpaceData& space, const std::array<double, 3>& p
     if (!(h > 0)) h = speed2;  // locally concave: Gauss-Newton still descends
     if (!(h > 0) || !std::isfinite(g)) break;
     double step = -g / h;
-    double next = 0, d = 0;
-    for (int halving = 0; halving < 40; ++halving, step *= 0.5) {
-      next = on_segment ? std::clamp(t + step, 0.0, 1.0) : t + step;
-      d = space_distance(space, point, next);
-      if (d <= best.distance) break;
+    // A step below rounding -- of t itself, and of the point's coordinates (~1 in normalized
+    // units) over the speed -- leaves t where it is: the common case of a point on the curve,
+    // whose plane answer is already the parameter to full precision.
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    if (std::abs(step) <= 4 * eps * std::max(1.0, std::abs(t)) + 16 * eps / std::sqrt(speed2)) break;
+    bool reduced = false;
+    for (int halving = 0; halving < 40 && !reduced; ++halving, step *= 0.5) {
+      const double next = on_segment ? std::clamp(t + step, 0.0, 1.0) : t + step;
+      if (next == t) break;
+      const SpaceJet candidate = space_jet(space, next);
+      const double d = distance_of(candidate);
+      if (d <= best.distance) {
+        best = {next, d};
+        t = next;
+        j = candidate;
+        reduced = true;
+      }
     }
-    if (!(d <= best.distance)) break;  // no step reduces the distance: a minimum to rounding
-    const bool settled = std::abs(next - t) <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t));
-    best = {next, d};
-    t = next;
-    if (settled) break;
+    if (!reduced) break;  // no step reduces the distance: a minimum to rounding
   }
   return best;
 }

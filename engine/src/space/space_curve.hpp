@@ -33,6 +33,10 @@ struct SpacePolynomial {
   std::vector<double> c, binomial_c;
   explicit SpacePolynomial(std::vector<double> coefficients = {});
   double operator()(double t) const;
+  int degree() const { return static_cast<int>(c.size()) - 1; }
+  // sum_i binomial_c[i] s^i (forward) or sum_i binomial_c[i] s^(m - i) (backward): times u^m
+  // (u = 1 - t, s = t / u forward; u = t, s = (1 - t) / u backward) it is the value at t.
+  double horner(bool forward, double s) const;
 };
 
 struct SpaceData {
@@ -45,7 +49,11 @@ struct SpaceData {
   // The normalized curve, coordinate k = num[k] / den[k], and the derivatives' polynomials
   // (degrees n - 1 and n - 2; zero below).
   std::array<SpacePolynomial, 3> num, den, d_num, d_den, dd_num, dd_den;
-  std::vector<double> samples;  // P at kSpaceSamples(n) equally spaced t in [0, 1], normalized, x y z each
+  // The same for Horner's rule, interleaved: for derivative order r (0, 1, 2), entry i * 8 + j is
+  // coefficient i (times C(m, i), m = n - r) of polynomial j = num x, y, z, den x, y, z (6, 7
+  // unused): one loop over i evaluates all six side by side.
+  std::array<std::vector<double>, 3> interleaved;
+  std::vector<double> samples;  // P at equally spaced t in [0, 1] (16 (n + 1) + 1 of them), normalized, x y z each
 };
 
 // The space data of a validated space curve; throws CurveError for one the plane engine cannot take
