@@ -168,6 +168,34 @@ TEST(MatrixWeighted, FigureTwosShapeConvertsToDegreeEighteen) {
   }
 }
 
+// Figure 2's curve inverted in space: points made by the definition (M(t) Q(t) = sum B_i M_i P_i
+// solved at t) invert at their parameter, status ok; points moved off it along z are off_curve.
+TEST(MatrixWeighted, FigureTwosPointsInvertInSpace) {
+  const Vector3 points[] = {{2, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 3, 0}, {0, 4, 1}, {0, 4, 2}, {0, 3, 3}};
+  const Vector3 tangents[] = {{0, 1, 0}, {-0.3, 1, 0}, {-1, 1, 0}, {0, 1, 0}, {0, 0.3, 1}, {0, 0, 1}, {0, -1, 1}};
+  const double mus[] = {1, 1, 2, 2, 4, 4, 4};
+  MatrixWeightedCurve c;
+  c.id = "figure 2";
+  c.dimension = 3;
+  for (int i = 0; i < 7; ++i) {
+    c.points.push_back(points[i]);
+    c.matrices.push_back(bezinv::tangent_weight(3, tangents[i], 1.0, mus[i], "P"));
+  }
+  const bezinv::Curve curve = bezinv::rational_curve(bezinv::convert(c), "figure 2");
+  ASSERT_EQ(curve.dimension(), 3);
+  const bezinv::InversionPlan plan = bezinv::make_plan(curve);
+  for (int k = 0; k <= 40; ++k) {
+    const double t = k / 40.0;
+    const Vector3 q = bezinv::matrix_weighted_point(c, t);
+    const auto r = bezinv::invert_point(plan, bezinv::Point3(q[0], q[1], q[2]));
+    EXPECT_EQ(r.status, bezinv::Status::ok) << "t " << t;
+    EXPECT_NEAR(r.t, t, 1e-9) << "t " << t;
+    const auto off = bezinv::invert_point(plan, bezinv::Point3(q[0] + 0.05, q[1], q[2]));
+    EXPECT_EQ(off.status, bezinv::Status::off_curve) << "t " << t;
+    EXPECT_LE(off.residual, 0.05 * (1 + 1e-12)) << "t " << t;
+  }
+}
+
 // Scalar matrices M_i = s_i I make Q(t) the rational Bezier curve of weights s_i, converted to
 // degree 2n with the common factor sum s_i B_i (the plan takes it out and inverts at degree n);
 // near-scalar ones (1e-9 off the diagonal) leave a near-common factor. Points made by the
