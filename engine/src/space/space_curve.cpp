@@ -361,7 +361,10 @@ SpaceRefined space_refine(const SpaceData& space, const std::array<double, 3>& p
   double t = on_segment ? std::clamp(t0, 0.0, 1.0) : t0;
   SpaceJet j = space_jet(space, t);
   auto distance_of = [&](const SpaceJet& jet) {
-    return std::hypot(jet.p[0] - point[0], jet.p[1] - point[1], jet.p[2] - point[2]);
+    const double dx = jet.p[0] - point[0], dy = jet.p[1] - point[1], dz = jet.p[2] - point[2];
+    const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+    // (hypot is several times slower; it is needed only where the squares overflow: a far point)
+    return std::isfinite(d) ? d : std::hypot(dx, dy, dz);
   };
   SpaceRefined best{t, distance_of(j)};
   if (!std::isfinite(best.distance)) return best;
