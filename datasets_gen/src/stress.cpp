@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "bezinv/datasets/branches.hpp"
 #include "bezinv/datasets/cusp.hpp"
@@ -17,6 +18,7 @@
 #include "bezinv/datasets/random_numbers.hpp"
 #include "bezinv/datasets/self_intersection.hpp"
 #include "bezinv/datasets/translation.hpp"
+#include "bezinv/matrix_weighted.hpp"
 
 namespace bezinv::datasets {
 namespace {
@@ -255,6 +257,26 @@ std::optional<StressCurve> stress_curve(Family family, CurveKind kind, int degre
       c.curve = base;
       return c;
     }
+    case Family::matrix_weighted: {
+      if (kind != CurveKind::rational || degree % 2) return std::nullopt;
+      const Curve base = random_curve(CurveKind::bezier, degree / 2, rng, polygon);
+      MatrixWeightedCurve m;
+      m.id = "matrix_weighted";
+      for (int i = 0; i <= degree / 2; ++i) {
+        m.points.push_back({base.x_num[i], base.y_num[i], 0.0});
+        const double angle = uniform(rng, 0.0, 2 * std::numbers::pi);
+        const Vector3 direction{std::cos(angle), std::sin(angle), 0.0};
+        const double omega = uniform(rng, 0.5, 2.0), mu = uniform(rng, -0.9, 10.0);
+        m.matrices.push_back(index % 2 ? normal_weight(2, direction, omega, mu, "P")
+                                       : tangent_weight(2, direction, omega, mu, "P"));
+      }
+      try {
+        c.curve = plane_curve(convert(m), "matrix_weighted");
+      } catch (const CurveError&) {
+        return std::nullopt;  // M(t) singular on [0, 1] (eqs. (2), (3) make it positive definite: never)
+      }
+      return c;
+    }
     case Family::papers: {
       if (index != 0) return std::nullopt;  // one curve: they are fixed
       if (kind == CurveKind::rational && degree == 4) c.curve = paper_example1_curve();
@@ -285,6 +307,7 @@ const char* to_string(Family family) {
     case Family::improper: return "improper";
     case Family::weights: return "weights";
     case Family::papers: return "papers";
+    case Family::matrix_weighted: return "matrix_weighted";
   }
   return "?";
 }
@@ -323,6 +346,7 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
     case Family::tiny:
     case Family::elevated:
     case Family::weights:
+    case Family::matrix_weighted:
     case Family::papers: known = segment_points(sampling, count, rng); break;
     case Family::improper: known = improper_points(sampling, count, rng); break;
     case Family::cusps: break;

@@ -36,11 +36,15 @@
 //              parameter -t on the extension. Status ok.
 //   weights    on_curve's points with weights (denominator coefficients) 10^-4..10^4: ratios up
 //              to 1e8 (rational kinds only). Status ok.
+//   matrix_weighted  Yang's matrix-weighted curves of degree n / 2 (even degrees, kind rational: what
+//              the conversion gives), weights from point-normal or point-tangent pairs (eqs. (2),
+//              (3)), omega 0.5..2, mu -0.9..10, converted to degree n; on_curve's points. Status ok.
 //   papers     the papers' curves where kind and degree match (Marco & Martinez's Examples 1, 2
 //              and 4, and the demo's cubic), on_curve's points. Status ok.
 // Every generated point is isolated from the curve's other branches (datasets/known_point.hpp).
 // A family that does not apply to a kind or degree (crossings and cusps below 3, improper at odd degrees,
-// weights for bezier, papers but for their own) makes no curve there.
+// weights for bezier, matrix_weighted but for rational at even degrees, papers but for their own)
+// makes no curve there.
 #include <array>
 #include <limits>
 #include <cstddef>
@@ -55,11 +59,14 @@
 
 namespace bezinv::datasets {
 
-enum class Family { on_curve, near_ends, extension, noisy, far, crossings, cusps, translated, tiny, elevated, improper, weights, papers };
+enum class Family {
+  on_curve, near_ends, extension, noisy, far, crossings, cusps, translated, tiny, elevated, improper, weights,
+  papers, matrix_weighted
+};
 inline constexpr std::array kFamilies = {Family::on_curve,   Family::near_ends, Family::extension, Family::noisy,
                                          Family::far,        Family::crossings, Family::cusps,     Family::translated,
                                          Family::tiny,       Family::elevated,  Family::improper,  Family::weights,
-                                         Family::papers};
+                                         Family::papers,     Family::matrix_weighted};
 const char* to_string(Family family);
 std::optional<Family> family_from_string(std::string_view name);
 
