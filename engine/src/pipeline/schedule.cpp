@@ -77,11 +77,10 @@ void invert_curve(const PlanData& plan, std::span<const Point> points, std::span
 }
 
 void for_each_range(std::size_t count, const InvertOptions& options,
-                    const std::function<void(std::size_t, std::size_t)>& body) {
-  constexpr std::size_t kRange = 256;
-  if (options.threads == 1 || count <= kRange) return body(0, count);
+                    const std::function<void(std::size_t, std::size_t)>& body, std::size_t grain) {
+  if (options.threads == 1 || count <= grain) return body(0, count);
   arena_for(options.threads).execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kRange),
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
                       [&](const auto& range) { body(range.begin(), range.end()); });
   });
 }

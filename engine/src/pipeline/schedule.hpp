@@ -20,8 +20,9 @@ void invert_curve(const PlanData& plan, std::span<const Point> points, std::span
 void invert_curves(std::span<const InversionPlan> plans, std::span<const int> curve_of, std::span<const Point> points,
                    std::span<const double> z, std::span<PointResult> results, const InvertOptions& options);
 
-// body(begin, end) over [0, count) in ranges, in parallel on options.threads threads (one: here).
+// body(begin, end) over [0, count) in ranges of about `grain`, in parallel on options.threads
+// threads (one, or a single range: here).
 void for_each_range(std::size_t count, const InvertOptions& options,
-                    const std::function<void(std::size_t, std::size_t)>& body);
+                    const std::function<void(std::size_t, std::size_t)>& body, std::size_t grain = 256);
 
 }  // namespace bezinv::detail
