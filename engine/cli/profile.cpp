@@ -55,7 +55,9 @@ Workload generate(const ProfileOptions& options) {
       t[i] = datasets::uniform(rng, 0.0, 1.0);
       angle[i] = datasets::uniform(rng, 0.0, 2 * std::numbers::pi);
       offset[i] = options.noise * datasets::uniform(rng, 0.0, 1.0) * w.plans.back().diagonal();
-      polar[i] = std::acos(datasets::uniform(rng, -1.0, 1.0));  // a direction uniform on the sphere
+      // A direction uniform on the sphere (space curves only: the plane workload's random numbers
+      // stay as they were, so its figures compare across versions).
+      if (options.dimension == 3) polar[i] = std::acos(datasets::uniform(rng, -1.0, 1.0));
     }
     if (options.dimension == 3) {
       std::vector<Point3> points(count);
