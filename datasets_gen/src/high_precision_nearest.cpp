@@ -76,8 +76,9 @@ struct Stationarity {
   Big f, derivative, distance2, speed2;
 };
 
-// f = (x - x0) x' + (y - y0) y', f' = x'^2 + y'^2 + (x - x0) x'' + (y - y0) y''.
-Stationarity stationarity(const Curve& curve, Point point, const Big& t) {
+// f = (x - x0) x' + (y - y0) y', f' = x'^2 + y'^2 + (x - x0) x'' + (y - y0) y'' (and z's terms for a
+// space curve).
+Stationarity stationarity(const Curve& curve, Point point, double z0, const Big& t) {
   const Jet x = quotient_jet(curve.x_num, curve.x_den, t), y = quotient_jet(curve.y_num, curve.y_den, t);
   const Big dx = x.value - Big(point.x), dy = y.value - Big(point.y);
   Stationarity s;
@@ -85,6 +86,14 @@ Stationarity stationarity(const Curve& curve, Point point, const Big& t) {
   s.f = dx * x.first + dy * y.first;
   s.derivative = (s.speed2 + dx * x.second) + dy * y.second;
   s.distance2 = dx * dx + dy * dy;
+  if (curve.dimension() == 3) {
+    const Jet z = quotient_jet(curve.z_num, curve.z_den, t);
+    const Big dz = z.value - Big(z0);
+    s.speed2 = s.speed2 + z.first * z.first;
+    s.f = s.f + dz * z.first;
+    s.derivative = (s.derivative + z.first * z.first) + dz * z.second;
+    s.distance2 = s.distance2 + dz * dz;
+  }
   return s;
 }
 
@@ -96,16 +105,17 @@ double sqrt_to_double(const Big& x) {
 
 }  // namespace
 
-HighPrecisionNearest high_precision_nearest(const Curve& curve, Point point, double t_start, bool segment_only) {
+HighPrecisionNearest high_precision_nearest(const Curve& curve, Point point, double t_start, bool segment_only,
+                                            double z) {
   Big t(t_start);
   bool converged = false;
   // Quadratic convergence from ~1e-6 reaches the working precision in about 4 steps; 60 allow slow
   // (near degenerate) minima to creep in. The precision attainable in t is 2^-bits relative to t,
   // or to the point's size over the speed (a curve 1e12 from the origin is known to 2^-128 1e12 in
   // x, so to that over |P'| in t): converged 2^20 above the larger.
-  const double coordinates = std::max({std::abs(point.x), std::abs(point.y), 1.0});
+  const double coordinates = std::max({std::abs(point.x), std::abs(point.y), std::abs(z), 1.0});
   for (int iteration = 0; iteration < 60 && !converged; ++iteration) {
-    const Stationarity s = stationarity(curve, point, t);
+    const Stationarity s = stationarity(curve, point, z, t);
     const double speed = std::sqrt(s.speed2.to_double());
     const Big tolerance(std::ldexp(std::max(std::abs(t.to_double()), coordinates / speed), -(kReferenceBits - 20)));
     if (mpfr_sgn(s.derivative.get()) <= 0) break;  // not a minimum's basin: keep what we have
@@ -125,15 +135,15 @@ HighPrecisionNearest high_precision_nearest(const Curve& curve, Point point, dou
   HighPrecisionNearest result;
   result.t = t.to_double();
   result.t_low = (t - Big(result.t)).to_double();
-  const Stationarity s = stationarity(curve, point, t);
+  const Stationarity s = stationarity(curve, point, z, t);
   result.distance = sqrt_to_double(s.distance2);
   result.speed = sqrt_to_double(s.speed2);
   result.converged = converged;
   return result;
 }
 
-double high_precision_stationarity(const Curve& curve, Point point, double t_hi, double t_lo) {
-  return stationarity(curve, point, Big(t_hi) + Big(t_lo)).f.to_double();
+double high_precision_stationarity(const Curve& curve, Point point, double t_hi, double t_lo, double z) {
+  return stationarity(curve, point, z, Big(t_hi) + Big(t_lo)).f.to_double();
 }
 
 }  // namespace bezinv::datasets

@@ -277,6 +277,34 @@ std::optional<StressCurve> stress_curve(Family family, CurveKind kind, int degre
       }
       return c;
     }
+    case Family::space: {
+      if (kind == CurveKind::rational) return std::nullopt;  // a rotation would mix separate denominators
+      c.curve = random_curve(kind, degree, rng, polygon);
+      // e1, e2: an orthonormal pair from random directions (Gram-Schmidt), e3 their cross product.
+      auto unit = [](std::array<double, 3> v) {
+        const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        for (double& x : v) x /= l;
+        return v;
+      };
+      c.e1 = unit({uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)});
+      std::array<double, 3> v{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)};
+      const double along = v[0] * c.e1[0] + v[1] * c.e1[1] + v[2] * c.e1[2];
+      for (int k = 0; k < 3; ++k) v[k] -= along * c.e1[k];
+      c.e2 = unit(v);
+      c.e3 = {c.e1[1] * c.e2[2] - c.e1[2] * c.e2[1], c.e1[2] * c.e2[0] - c.e1[0] * c.e2[2],
+              c.e1[0] * c.e2[1] - c.e1[1] * c.e2[0]};
+      Curve lifted = c.curve;  // one denominator: the homogeneous numerators map linearly
+      lifted.z_num.resize(c.curve.x_num.size());
+      for (std::size_t i = 0; i < c.curve.x_num.size(); ++i) {
+        const double x = c.curve.x_num[i], y = c.curve.y_num[i];
+        lifted.x_num[i] = c.e1[0] * x + c.e2[0] * y;
+        lifted.y_num[i] = c.e1[1] * x + c.e2[1] * y;
+        lifted.z_num[i] = c.e1[2] * x + c.e2[2] * y;
+      }
+      lifted.z_den = lifted.x_den;
+      c.space = lifted;
+      return c;
+    }
     case Family::papers: {
       if (index != 0) return std::nullopt;  // one curve: they are fixed
       if (kind == CurveKind::rational && degree == 4) c.curve = paper_example1_curve();
@@ -308,6 +336,7 @@ const char* to_string(Family family) {
     case Family::weights: return "weights";
     case Family::papers: return "papers";
     case Family::matrix_weighted: return "matrix_weighted";
+    case Family::space: return "space";
   }
   return "?";
 }
@@ -339,6 +368,46 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
       rows.push_back(cusp_row(curve, k, stress_curve.t1, diagonal, tolerance));
     return rows;
   }
+  if (family == Family::space) {
+    // The plane rows at the space curve's tolerance, lifted (see stress.hpp).
+    const Curve& lifted = *stress_curve.space;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (std::size_t i = 0; i < lifted.x_num.size(); ++i) {
+      const double p[3] = {lifted.x_num[i] / lifted.x_den[i], lifted.y_num[i] / lifted.x_den[i],
+                           lifted.z_num[i] / lifted.x_den[i]};
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+    }
+    const double diagonal3 = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    const double relative = relative_tolerance * diagonal3 / diagonal;
+    std::vector<StressRow> rows = stress_rows(Family::on_curve, stress_curve, sampling, count / 2, relative, rng);
+    std::vector<StressRow> off = stress_rows(Family::noisy, stress_curve, sampling, count - count / 2, relative, rng);
+    rows.insert(rows.end(), off.begin(), off.end());
+    for (StressRow& row : rows) {
+      const double x = row.point.x, y = row.point.y;
+      // Off the plane only where the status cannot change: rows off the curve beyond doubt.
+      const bool off = row.acceptable == bit(Status::off_curve);
+      const double h = off ? uniform(rng, -2.0, 2.0) * row.distance : 0.0;
+      const std::array<double, 3>& a = stress_curve.e1;
+      const std::array<double, 3>& b = stress_curve.e2;
+      const std::array<double, 3>& n = stress_curve.e3;
+      row.point = {a[0] * x + b[0] * y + h * n[0], a[1] * x + b[1] * y + h * n[1]};
+      row.z = a[2] * x + b[2] * y + h * n[2];
+      // The lifted point and curve are rounded: the truth again, in space, from the plane's.
+      const HighPrecisionNearest truth3 =
+          high_precision_nearest(lifted, row.point, row.t_true, /*segment_only=*/off, row.z);
+      if (truth3.converged) {
+        row.t_true = truth3.t;
+        row.distance = truth3.distance;
+        const double size = std::max({std::abs(row.point.x), std::abs(row.point.y), std::abs(row.z)});
+        row.bound = std::max(row.bound, stress_bound(lifted.degree(), size, 0.0, diagonal3, 0.0, truth3.speed));
+      } else {
+        row.t_true = std::numeric_limits<double>::quiet_NaN();  // counted as no truth
+        row.distance = std::hypot(row.distance, h);
+      }
+    }
+    return rows;
+  }
   std::vector<KnownPoint> known;
   switch (family) {
     case Family::on_curve:
@@ -348,6 +417,7 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
     case Family::weights:
     case Family::matrix_weighted:
     case Family::papers: known = segment_points(sampling, count, rng); break;
+    case Family::space: break;
     case Family::improper: known = improper_points(sampling, count, rng); break;
     case Family::cusps: break;
     case Family::crossings: break;

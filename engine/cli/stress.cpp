@@ -215,7 +215,7 @@ int run_stress(const StressOptions& options) {
     const int index = static_cast<int>(i % static_cast<std::size_t>(options.curves));
     const std::optional<datasets::StressCurve> curve = datasets::stress_curve(c.family, c.kind, c.degree, index, rng);
     if (!curve) return;  // the family does not apply here
-    InversionPlan plan = make_plan(curve->curve);
+    InversionPlan plan = make_plan(curve->space ? *curve->space : curve->curve);  // the engine's curve
     if (!plan.usable()) return;
     const datasets::CurveSampling sampling(curve->curve);
     c.rows = datasets::stress_rows(c.family, *curve, sampling, static_cast<int>(per_curve), options.relative_tolerance,
@@ -236,15 +236,21 @@ int run_stress(const StressOptions& options) {
       for (std::size_t i = first; i < first + static_cast<std::size_t>(options.curves); ++i) {
         const CurveRows& c = curves[i];
         if (!c.plan || c.rows.empty()) continue;
+        const bool space = c.plan->dimension() == 3;
         std::vector<Point> points;
-        for (const StressRow& row : c.rows) points.push_back(row.point);
-        std::vector<PointResult> results(points.size());
+        std::vector<Point3> space_points;
+        for (const StressRow& row : c.rows) {
+          if (space) space_points.emplace_back(row.point.x, row.point.y, row.z);
+          else points.push_back(row.point);
+        }
+        std::vector<PointResult> results(c.rows.size());
         const auto start = std::chrono::steady_clock::now();
-        invert(*c.plan, points, results, invert_options);
+        if (space) invert(*c.plan, space_points, results, invert_options);
+        else invert(*c.plan, points, results, invert_options);
         cell.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        for (std::size_t k = 0; k < points.size(); ++k) cell.tally.add(c.rows[k], results[k], c.plan->diagonal());
+        for (std::size_t k = 0; k < c.rows.size(); ++k) cell.tally.add(c.rows[k], results[k], c.plan->diagonal());
         if (reporting)
-          for (std::size_t k = 0; k < points.size(); ++k)
+          for (std::size_t k = 0; k < c.rows.size(); ++k)
             report.add({c.family, c.kind, c.degree, to_string(path), &c.plan->curve()}, c.rows[k], results[k]);
       }
       if (cell.tally.rows > 0) cells.push_back(std::move(cell));  // a family that does not apply here
@@ -260,7 +266,7 @@ int run_stress(const StressOptions& options) {
                 0.0};
       for (std::size_t i = first; i < first + static_cast<std::size_t>(options.curves); ++i) {
         const CurveRows& c = curves[i];
-        if (!c.plan || c.rows.empty()) continue;
+        if (!c.plan || c.rows.empty() || c.plan->dimension() == 3) continue;  // plane curves only
         const auto projector = baselines::projector(library, c.plan->curve());
         if (!projector) continue;  // separate denominators: not a curve the library takes
         for (const StressRow& row : c.rows) {

@@ -42,13 +42,18 @@ void write_file(const std::filesystem::path& path, const std::string& text) {
 // they read back to the same bits). rational_bezier is written as `rational` with its four lists:
 // its control points a_i = x_num_i / w_i would be rounded.
 nlohmann::json curve_json(const Curve& curve) {
+  const bool space = curve.dimension() == 3;
   if (curve.kind == CurveKind::bezier) {
     nlohmann::json points = nlohmann::json::array();
-    for (std::size_t i = 0; i < curve.x_num.size(); ++i) points.push_back({curve.x_num[i], curve.y_num[i]});
+    for (std::size_t i = 0; i < curve.x_num.size(); ++i)
+      points.push_back(space ? nlohmann::json{curve.x_num[i], curve.y_num[i], curve.z_num[i]}
+                             : nlohmann::json{curve.x_num[i], curve.y_num[i]});
     return {{"id", "c"}, {"kind", "bezier"}, {"points", points}};
   }
-  return {{"id", "c"},           {"kind", "rational"},      {"x_num", curve.x_num},
-          {"x_den", curve.x_den}, {"y_num", curve.y_num},    {"y_den", curve.y_den}};
+  nlohmann::json out = {{"id", "c"},           {"kind", "rational"},   {"x_num", curve.x_num},
+                        {"x_den", curve.x_den}, {"y_num", curve.y_num}, {"y_den", curve.y_den}};
+  if (space) out["z_num"] = curve.z_num, out["z_den"] = curve.z_den;
+  return out;
 }
 
 double ratio_of(const StressRow& row, const PointResult& got) {
@@ -188,8 +193,12 @@ void StressReport::write(const std::filesystem::path& directory, const nlohmann:
     if (error) throw std::runtime_error("cannot create " + dir.string() + ": " + error.message());
     write_file(dir / "curves.json", nlohmann::json{{"curves", nlohmann::json::array({curve_json(k.curve)})}}.dump(1) + "\n");
     char line[128];
-    std::snprintf(line, sizeof line, "c,%.17g,%.17g\n", k.row.point.x, k.row.point.y);
-    write_file(dir / "points.csv", std::string("curve,x,y\n") + line);
+    const bool space = k.curve.dimension() == 3;
+    if (space)
+      std::snprintf(line, sizeof line, "c,%.17g,%.17g,%.17g\n", k.row.point.x, k.row.point.y, k.row.z);
+    else
+      std::snprintf(line, sizeof line, "c,%.17g,%.17g\n", k.row.point.x, k.row.point.y);
+    write_file(dir / "points.csv", std::string(space ? "curve,x,y,z\n" : "curve,x,y\n") + line);
     nlohmann::json acceptable = nlohmann::json::array();
     for (std::size_t s = 0; s < datasets::kStatusCount; ++s)
       if ((k.row.acceptable >> s) & 1u) acceptable.push_back(bezinv::to_string(static_cast<Status>(s)));

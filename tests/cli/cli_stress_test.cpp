@@ -50,7 +50,7 @@ TEST(CliStress, EveryCellReportedAndEveryStatusRight) {
 TEST(CliStress, SpecialCurvesFamiliesAllRight) {
   ScratchDirectory scratch{"bezinv-stress-test-"};
   const auto run = run_bezinv(scratch,
-                              "stress --families crossings,translated,elevated,improper,weights,papers,matrix_weighted --degrees 3-4 "
+                              "stress --families crossings,translated,elevated,improper,weights,papers,matrix_weighted,space --degrees 3-4 "
                               "--points 2400 --curves 2 --json");
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out.substr(0, 2000);
   const auto report = nlohmann::json::parse(run.out);
@@ -63,7 +63,7 @@ TEST(CliStress, SpecialCurvesFamiliesAllRight) {
       double_points += cell.at("confusion").at("double_point").value("double_point", 0);
   }
   EXPECT_EQ(families, (std::set<std::string>{"crossings", "translated", "elevated", "improper", "weights", "papers",
-                                             "matrix_weighted"}));
+                                             "matrix_weighted", "space"}));
   EXPECT_GT(double_points, 0) << "the crossings must include points within the tolerance of both branches";
 }
 

@@ -56,14 +56,16 @@ mpq_class bernstein_derivative_exact(const std::vector<double>& c, const mpq_cla
 }
 
 // f(t) = (P(t) - p) . P'(t), exactly: x = N / D, x' = (N' D - N D') / D^2.
-mpq_class stationarity_exact(const Curve& curve, Point p, const mpq_class& t) {
+mpq_class stationarity_exact(const Curve& curve, Point p, const mpq_class& t, double z = 0.0) {
   auto coordinate = [&](const std::vector<double>& num, const std::vector<double>& den, double p0) -> mpq_class {
     const mpq_class N = bernstein_exact(num, t), D = bernstein_exact(den, t);
     const mpq_class dN = bernstein_derivative_exact(num, t), dD = bernstein_derivative_exact(den, t);
     const mpq_class value = N / D, slope = (dN * D - N * dD) / (D * D);
     return (value - mpq_class(p0)) * slope;
   };
-  return mpq_class(coordinate(curve.x_num, curve.x_den, p.x) + coordinate(curve.y_num, curve.y_den, p.y));
+  mpq_class f = coordinate(curve.x_num, curve.x_den, p.x) + coordinate(curve.y_num, curve.y_den, p.y);
+  if (curve.dimension() == 3) f += coordinate(curve.z_num, curve.z_den, z);
+  return f;
 }
 
 // A polynomial curve with small integer control points at t = k / 64: P(t) has denominator
@@ -138,13 +140,16 @@ TEST(StressRows, EveryFamilysTruthIsWhereTheExactDistanceHasAMinimum) {
         const auto curve = stress_curve(family, kind, degree, 0, rng);
         if (!curve) continue;
         const CurveSampling sampling(curve->curve);
+        // The engine's curve: family space gives it the curve in space, and its rows a z.
+        const Curve& given = curve->space ? *curve->space : curve->curve;
         for (const StressRow& r : stress_rows(family, *curve, sampling, 6, 1e-6, rng))
           for (double t : {r.t_true, r.t2_true}) {
             if (!std::isfinite(t) || t == 0.0 || t == 1.0) continue;
             const mpq_class below(std::nextafter(std::nextafter(t, -1e300), -1e300));
             const mpq_class above(std::nextafter(std::nextafter(t, 1e300), 1e300));
-            EXPECT_LT(sgn(stationarity_exact(curve->curve, r.point, below)), 0) << to_string(family) << " t " << t;
-            EXPECT_GT(sgn(stationarity_exact(curve->curve, r.point, above)), 0) << to_string(family) << " t " << t;
+            const double z = std::isfinite(r.z) ? r.z : 0.0;
+            EXPECT_LT(sgn(stationarity_exact(given, r.point, below, z)), 0) << to_string(family) << " t " << t;
+            EXPECT_GT(sgn(stationarity_exact(given, r.point, above, z)), 0) << to_string(family) << " t " << t;
             ++family_checked;
           }
       }
@@ -227,7 +232,7 @@ namespace {
 TEST(StressRows, FarFromTheOriginAnotherBranchWithinTheToleranceMakesDoublePointRight) {
   std::mt19937_64 rng(23);
   const Curve crossing = with_self_intersection(CurveKind::bezier, 4, 0.3, 0.7, rng, ControlPolygon::perturbed_arc);
-  StressCurve curve{translated(crossing, 1e12, 1e12), 0.3, 0.7};
+  StressCurve curve{translated(crossing, 1e12, 1e12), 0.3, 0.7, {}, {}, {}, {}};
   const CurveSampling sampling(curve.curve);
   const std::vector<StressRow> rows = stress_rows(Family::translated, curve, sampling, 1200, 1e-6, rng);
   const double ulp = std::nextafter(1e12, 2e12) - 1e12, tolerance = 4 * ulp;

@@ -384,14 +384,20 @@ SpaceRefined space_refine(const SpaceData& space, const std::array<double, 3>& p
     // units) over the speed -- leaves t where it is: the common case of a point on the curve,
     // whose plane answer is already the parameter to full precision.
     constexpr double eps = std::numeric_limits<double>::epsilon();
-    if (std::abs(step) <= 4 * eps * std::max(1.0, std::abs(t)) + 16 * eps / std::sqrt(speed2)) break;
+    if (std::abs(step) <= 2 * eps * std::max(1.0, std::abs(t)) + 2 * eps / std::sqrt(speed2)) break;
+    // A step is taken where it reduces the distance, or (near the minimum, where the distance is
+    // flat to rounding and cannot tell two parameters apart) where it keeps the distance to rounding
+    // and reduces |(P - P0) . P'|, the derivative Newton's method drives to zero.
     bool reduced = false;
     for (int halving = 0; halving < 40 && !reduced; ++halving, step *= 0.5) {
       const double next = on_segment ? std::clamp(t + step, 0.0, 1.0) : t + step;
       if (next == t) break;
       const SpaceJet candidate = space_jet(space, next);
       const double d = distance_of(candidate);
-      if (d <= best.distance) {
+      double g_next = 0;
+      for (int k = 0; k < 3; ++k) g_next += (candidate.p[k] - point[k]) * candidate.dp[k];
+      const bool flat = d <= best.distance * (1 + 8 * eps) + 8 * eps && std::abs(g_next) < std::abs(g);
+      if (d < best.distance || flat) {
         best = {next, d};
         t = next;
         j = candidate;

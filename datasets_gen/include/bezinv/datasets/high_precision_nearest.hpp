@@ -29,10 +29,12 @@ struct HighPrecisionNearest {
 // generators' long double answer). segment_only: the nearest point of the segment [0,1] (an off-curve
 // point's answer), so a step that leaves the segment ends at that end; else of the whole curve (an
 // on-curve point's, whose nearest parameter may lie a rounding beyond an end).
-HighPrecisionNearest high_precision_nearest(const Curve& curve, Point point, double t_start, bool segment_only);
+// A space curve's point has its third coordinate in z (read only for a curve of dimension 3).
+HighPrecisionNearest high_precision_nearest(const Curve& curve, Point point, double t_start, bool segment_only,
+                                            double z = 0.0);
 
 // f(t) = (P(t) - point) . P'(t) at t = t_hi + t_lo, at kReferenceBits bits, rounded to double: its
 // sign changes across a nearest parameter (for the tests of the reference itself).
-double high_precision_stationarity(const Curve& curve, Point point, double t_hi, double t_lo);
+double high_precision_stationarity(const Curve& curve, Point point, double t_hi, double t_lo, double z = 0.0);
 
 }  // namespace bezinv::datasets

@@ -39,11 +39,18 @@
 //   matrix_weighted  Yang's matrix-weighted curves of degree n / 2 (even degrees, kind rational: what
 //              the conversion gives), weights from point-normal or point-tangent pairs (eqs. (2),
 //              (3)), omega 0.5..2, mu -0.9..10, converted to degree n; on_curve's points. Status ok.
+//   space      plane curves (bezier, rational_bezier) placed in a random plane through the origin of
+//              space: on_curve's and noisy's rows, the noisy ones off the curve moved off the plane
+//              too, by up to twice their distance. A plane curve's nearest point to a point off its
+//              plane is the nearest point to the point's foot in the plane, so the plane truth holds
+//              (t the same, distance sqrt(d^2 + h^2)); statuses for the tolerance relative to the
+//              space curve's box. Status ok, or off_curve.
 //   papers     the papers' curves where kind and degree match (Marco & Martinez's Examples 1, 2
 //              and 4, and the demo's cubic), on_curve's points. Status ok.
 // Every generated point is isolated from the curve's other branches (datasets/known_point.hpp).
 // A family that does not apply to a kind or degree (crossings and cusps below 3, improper at odd degrees,
-// weights for bezier, matrix_weighted but for rational at even degrees, papers but for their own)
+// weights for bezier, matrix_weighted but for rational at even degrees, space for rational, papers
+// but for their own)
 // makes no curve there.
 #include <array>
 #include <limits>
@@ -61,18 +68,19 @@ namespace bezinv::datasets {
 
 enum class Family {
   on_curve, near_ends, extension, noisy, far, crossings, cusps, translated, tiny, elevated, improper, weights,
-  papers, matrix_weighted
+  papers, matrix_weighted, space
 };
 inline constexpr std::array kFamilies = {Family::on_curve,   Family::near_ends, Family::extension, Family::noisy,
                                          Family::far,        Family::crossings, Family::cusps,     Family::translated,
                                          Family::tiny,       Family::elevated,  Family::improper,  Family::weights,
-                                         Family::papers,     Family::matrix_weighted};
+                                         Family::papers,     Family::matrix_weighted, Family::space};
 const char* to_string(Family family);
 std::optional<Family> family_from_string(std::string_view name);
 
 // One row: what the engine is given, and what it must answer.
 struct StressRow {
   Point point;
+  double z = std::numeric_limits<double>::quiet_NaN();  // the point's third coordinate (family space)
   Status expected = Status::ok;
   unsigned acceptable = 0;  // the statuses that are right (bit 1 << status; `expected` among them):
                             // more than one for a row within a margin of the tolerance (ambiguous)
@@ -92,8 +100,11 @@ double stress_bound(int degree, double x, double y, double diagonal, double scal
 // A curve of the family, or none where the family does not apply. t1, t2: a crossing's parameters;
 // t1: a cusp's.
 struct StressCurve {
-  Curve curve;
+  Curve curve;  // the truth's curve (family space: the plane curve, in plane coordinates)
   double t1 = std::numeric_limits<double>::quiet_NaN(), t2 = std::numeric_limits<double>::quiet_NaN();
+  // Family space: the curve given to the engine, (x, y) -> x e1 + y e2, and its plane's normal e3.
+  std::optional<Curve> space;
+  std::array<double, 3> e1{}, e2{}, e3{};
 };
 // index: the curve's number within its cell (even: a perturbed arc, odd: a wild control polygon).
 std::optional<StressCurve> stress_curve(Family family, CurveKind kind, int degree, int index, std::mt19937_64& rng);
