@@ -129,59 +129,6 @@ TEST(CliFormula, AnUnknownCurveOrABadBasePointIsAnInputError) {
   EXPECT_NE(run.err.find("'x'"), std::string::npos) << run.err;
 }
 
-// `bezinv invert --algebraic formula`: the same statuses as the default on the paper's cubic, at
-// points on it, near its double point and off it; rows the formula started say path formula.
-TEST(CliFormula, InvertWithTheFormulaGivesTheDefaultsStatuses) {
-  ScratchDirectory scratch("bezinv-cli-formula-");
-  const std::string curves = scratch.write("curves.json", kPaperCurves);
-  std::string csv = "curve,x,y\n";
-  for (int k = 0; k <= 40; ++k) {
-    const double t = k / 40.0;  // Example 3's cubic in power form (the paper's x(t), y(t))
-    const double w = -3 * t * t + 3 * t + 1;
-    const double x = (7 * t * t * t - 12 * t * t + 6 * t) / w, y = (-6 * t * t + 6 * t) / w;
-    csv += "example 3," + std::to_string(x) + "," + std::to_string(y) + "\n";
-    csv += "example 3," + std::to_string(x + 0.01) + "," + std::to_string(y) + "\n";
-  }
-  csv += "example 3,0.5,0.6\n";  // the double point, the formula's centre
-  const std::string points = scratch.write("points.csv", csv);
-  const auto bezout = run_bezinv(scratch, "invert --curves " + quoted(curves) + " --points " + quoted(points) +
-                                              " --out " + quoted(scratch.path("bezout.csv")));
-  const auto formula = run_bezinv(scratch, "invert --algebraic formula --curves " + quoted(curves) + " --points " +
-                                               quoted(points) + " --out " + quoted(scratch.path("formula.csv")));
-  ASSERT_EQ(bezout.exit_code, 0) << bezout.err;
-  ASSERT_EQ(formula.exit_code, 0) << formula.err;
-  auto rows = [](const std::string& text) {
-    std::vector<std::vector<std::string>> out;
-    std::size_t start = text.find('\n') + 1;
-    while (start < text.size()) {
-      const std::size_t end = text.find('\n', start);
-      std::vector<std::string> fields;
-      std::size_t a = start;
-      while (a <= end) {
-        const std::size_t b = std::min(text.find(',', a), end);
-        fields.push_back(text.substr(a, b - a));
-        a = b + 1;
-      }
-      out.push_back(fields);
-      start = end + 1;
-    }
-    return out;
-  };
-  const auto a = rows(bezinv::test_support::read_file(scratch.path("bezout.csv")));
-  const auto b = rows(bezinv::test_support::read_file(scratch.path("formula.csv")));
-  ASSERT_EQ(a.size(), b.size());
-  int by_formula = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i][1], b[i][1]) << "row " << i;  // status
-    if (a[i][1] == "ok") {
-      EXPECT_NEAR(std::stod(a[i][0]), std::stod(b[i][0]), 1e-12) << "row " << i;
-    }
-    by_formula += b[i][6] == "formula";
-  }
-  EXPECT_EQ(a.back()[1], "double_point");  // the centre: the Bezout path's answer
-  EXPECT_GT(by_formula, 20);
-}
-
 // One CSV results file as rows of named fields.
 std::vector<std::map<std::string, std::string>> formula_cli_rows(const std::string& text) {
   std::vector<std::vector<std::string>> lines;
@@ -205,6 +152,42 @@ std::vector<std::map<std::string, std::string>> formula_cli_rows(const std::stri
     rows.push_back(row);
   }
   return rows;
+}
+
+// `bezinv invert --algebraic formula`: the same statuses as the default on the paper's cubic, at
+// points on it, near its double point and off it; rows the formula started say path formula.
+TEST(CliFormula, InvertWithTheFormulaGivesTheDefaultsStatuses) {
+  ScratchDirectory scratch("bezinv-cli-formula-");
+  const std::string curves = scratch.write("curves.json", kPaperCurves);
+  std::string csv = "curve,x,y\n";
+  for (int k = 0; k <= 40; ++k) {
+    const double t = k / 40.0;  // Example 3's cubic in power form (the paper's x(t), y(t))
+    const double w = -3 * t * t + 3 * t + 1;
+    const double x = (7 * t * t * t - 12 * t * t + 6 * t) / w, y = (-6 * t * t + 6 * t) / w;
+    csv += "example 3," + std::to_string(x) + "," + std::to_string(y) + "\n";
+    csv += "example 3," + std::to_string(x + 0.01) + "," + std::to_string(y) + "\n";
+  }
+  csv += "example 3,0.5,0.6\n";  // the double point, the formula's centre
+  const std::string points = scratch.write("points.csv", csv);
+  const auto bezout = run_bezinv(scratch, "invert --curves " + quoted(curves) + " --points " + quoted(points) +
+                                              " --out " + quoted(scratch.path("bezout.csv")));
+  const auto formula = run_bezinv(scratch, "invert --algebraic formula --curves " + quoted(curves) + " --points " +
+                                               quoted(points) + " --out " + quoted(scratch.path("formula.csv")));
+  ASSERT_EQ(bezout.exit_code, 0) << bezout.err;
+  ASSERT_EQ(formula.exit_code, 0) << formula.err;
+  const auto a = formula_cli_rows(bezinv::test_support::read_file(scratch.path("bezout.csv")));
+  const auto b = formula_cli_rows(bezinv::test_support::read_file(scratch.path("formula.csv")));
+  ASSERT_EQ(a.size(), b.size());
+  int by_formula = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].at("status"), b[i].at("status")) << "row " << i;
+    if (a[i].at("status") == "ok") {
+      EXPECT_NEAR(std::stod(a[i].at("t")), std::stod(b[i].at("t")), 1e-12) << "row " << i;
+    }
+    by_formula += b[i].at("path") == "formula";
+  }
+  EXPECT_EQ(a.back().at("status"), "double_point");  // the centre: the Bezout path's answer
+  EXPECT_GT(by_formula, 20);
 }
 
 // `--off-curve projection` on the paper's semicircles (Examples 1 and 2): the point (1, 1), off the

@@ -147,7 +147,7 @@ TEST(MatrixWeighted, FigureOnesShapeConvertsToDegreeTwelveAndItsPointsInvert) {
 // point-tangent pairs, the first three in the plane z = 0, the last three in the plane x = 0, the
 // middle one on their common line (the y axis); omega = 1, mu = 1, 1, 2, 2, 4, 4, 4. Converted to
 // degree 18, it is the curve of the definition to 1e-13, with every weight positive.
-TEST(MatrixWeighted, FigureTwosShapeConvertsToDegreeEighteen) {
+MatrixWeightedCurve figure_two_curve() {
   const Vector3 points[] = {{2, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 3, 0}, {0, 4, 1}, {0, 4, 2}, {0, 3, 3}};
   const Vector3 tangents[] = {{0, 1, 0}, {-0.3, 1, 0}, {-1, 1, 0}, {0, 1, 0}, {0, 0.3, 1}, {0, 0, 1}, {0, -1, 1}};
   const double mus[] = {1, 1, 2, 2, 4, 4, 4};
@@ -158,6 +158,11 @@ TEST(MatrixWeighted, FigureTwosShapeConvertsToDegreeEighteen) {
     c.points.push_back(points[i]);
     c.matrices.push_back(bezinv::tangent_weight(3, tangents[i], 1.0, mus[i], "P"));
   }
+  return c;
+}
+
+TEST(MatrixWeighted, FigureTwosShapeConvertsToDegreeEighteen) {
+  const MatrixWeightedCurve c = figure_two_curve();
   const auto converted = bezinv::convert(c);
   ASSERT_EQ(converted.weights.size(), 19u);
   for (double w : converted.weights) EXPECT_GT(w, 0.0);
@@ -171,16 +176,7 @@ TEST(MatrixWeighted, FigureTwosShapeConvertsToDegreeEighteen) {
 // Figure 2's curve inverted in space: points made by the definition (M(t) Q(t) = sum B_i M_i P_i
 // solved at t) invert at their parameter, status ok; points moved off it along z are off_curve.
 TEST(MatrixWeighted, FigureTwosPointsInvertInSpace) {
-  const Vector3 points[] = {{2, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 3, 0}, {0, 4, 1}, {0, 4, 2}, {0, 3, 3}};
-  const Vector3 tangents[] = {{0, 1, 0}, {-0.3, 1, 0}, {-1, 1, 0}, {0, 1, 0}, {0, 0.3, 1}, {0, 0, 1}, {0, -1, 1}};
-  const double mus[] = {1, 1, 2, 2, 4, 4, 4};
-  MatrixWeightedCurve c;
-  c.id = "figure 2";
-  c.dimension = 3;
-  for (int i = 0; i < 7; ++i) {
-    c.points.push_back(points[i]);
-    c.matrices.push_back(bezinv::tangent_weight(3, tangents[i], 1.0, mus[i], "P"));
-  }
+  const MatrixWeightedCurve c = figure_two_curve();
   const bezinv::Curve curve = bezinv::rational_curve(bezinv::convert(c), "figure 2");
   ASSERT_EQ(curve.dimension(), 3);
   const bezinv::InversionPlan plan = bezinv::make_plan(curve);
