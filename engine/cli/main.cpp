@@ -28,6 +28,7 @@
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
 #include "convert.hpp"
+#include "merge.hpp"
 #include "demo.hpp"
 #include "formula.hpp"
 #include "profile.hpp"
@@ -116,6 +117,13 @@ void check_output_directory(const std::string& out_path) {
   std::error_code error;
   if (!directory.empty() && !std::filesystem::is_directory(directory, error))
     throw bezinv::InputError(out_path + ": cannot write: directory " + directory.string() + " does not exist");
+}
+
+// Whether two paths name one file (device and inode; a character device never counts).
+bool same_file(const std::string& a, const std::string& b) {
+  struct stat first {}, second {};
+  return ::stat(a.c_str(), &first) == 0 && ::stat(b.c_str(), &second) == 0 && !S_ISCHR(first.st_mode) &&
+         first.st_dev == second.st_dev && first.st_ino == second.st_ino;
 }
 
 // OUT must not be an input under another name (./points.csv, a symbolic or hard link): the
@@ -276,6 +284,10 @@ int main(int argc, char** argv) {
                      "formula N/M where it is valid, path formula; with --no-refine, N/M itself)")
       ->check(CLI::IsMember({"bezout", "formula"}))
       ->capture_default_str();
+  std::string invert_rows;
+  invert->add_option("--rows", invert_rows,
+                     ".npy points: only rows A to B (0-based, B excluded; B past the end: to the end), for sharing "
+                     "one file over machines (bezinv merge joins the parts)");
   invert->add_option("--off-curve", invert_arguments.off_curve,
                      "An off_curve row's t: nearest (the nearest point of the segment) or projection (the "
                      "inversion formula's projection N/M of the point, path projection, where the formula is valid)")
@@ -380,6 +392,18 @@ int main(int argc, char** argv) {
   convert->add_option("--curves", convert_curves, "CURVES.json")->required();
   convert->add_option("--out", convert_out, "The converted CURVES.json")->required();
 
+  std::string merge_out, merge_points;
+  std::uint64_t merge_rows = 0;
+  std::vector<std::string> merge_parts;
+  CLI::App* merge = app.add_subcommand(
+      "merge", "Join the OUT.npy parts of bezinv invert --rows runs into one OUT.npy, every row once and in order");
+  merge->add_option("--out", merge_out, "The joined OUT.npy")->required();
+  CLI::Option* merge_points_option =
+      merge->add_option("--points", merge_points, "The POINTS.npy the parts were made from (its row count)");
+  CLI::Option* merge_rows_option = merge->add_option("--total", merge_rows, "The row count, without --points");
+  merge_points_option->excludes(merge_rows_option);
+  merge->add_option("parts", merge_parts, "Each part as A:B=PART.npy, A:B its --rows range")->required();
+
   bezinv::cli::FormulaOptions formula_options;
   std::string formula_base;
   CLI::App* formula = app.add_subcommand(
@@ -409,9 +433,7 @@ int main(int argc, char** argv) {
       return bezinv::cli::run_stress(stress_options);
     }
     if (convert->parsed()) {
-      struct stat in {}, out {};
-      if (::stat(convert_curves.c_str(), &in) == 0 && ::stat(convert_out.c_str(), &out) == 0 &&
-          !S_ISCHR(out.st_mode) && in.st_dev == out.st_dev && in.st_ino == out.st_ino)
+      if (same_file(convert_out, convert_curves))
         throw bezinv::InputError(convert_out + ": --out is the same file as --curves " + convert_curves +
                                  "; refusing to overwrite an input");
       check_output_directory(convert_out);
@@ -423,12 +445,31 @@ int main(int argc, char** argv) {
       return bezinv::cli::run_formula(formula_options);
     }
     if (invert->parsed()) {
+      if (!invert_rows.empty()) {
+        const bezinv::cli::MergePart range = bezinv::cli::parse_merge_part(invert_rows + "=-");
+        invert_arguments.selection.begin = range.begin;
+        invert_arguments.selection.end = range.end;
+      }
       invert_arguments.threads = checked_threads(invert_threads);
       check_chunk_points(invert_arguments.chunk_points);
       check_output_is_not_an_input(invert_arguments);
       const ParallelismLimit parallelism(invert_arguments.threads);
       bezinv::remove_temporary_outputs_on_signals();
       return run_invert(invert_arguments);
+    }
+    if (merge->parsed()) {
+      if (merge_points.empty() && merge_rows_option->count() == 0)
+        throw bezinv::InputError("bezinv merge: give --points POINTS.npy or --total N (the rows the parts share)");
+      std::uint64_t rows = merge_rows;
+      if (!merge_points.empty()) rows = bezinv::npy_rows(merge_points);
+      std::vector<bezinv::cli::MergePart> parts;
+      for (const std::string& text : merge_parts) parts.push_back(bezinv::cli::parse_merge_part(text));
+      check_output_directory(merge_out);
+      for (const auto& p : parts)
+        if (same_file(merge_out, p.path))
+          throw bezinv::InputError(merge_out + ": --out is the same file as the part " + p.path);
+      bezinv::remove_temporary_outputs_on_signals();
+      return bezinv::cli::run_merge(rows, std::move(parts), merge_out);
     }
     if (demo->parsed()) {
       const int threads = checked_threads(demo_threads);

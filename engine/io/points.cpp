@@ -378,6 +378,8 @@ std::unique_ptr<PointReader> open_points(const std::string& path, const std::vec
   if (!selection.curve.empty() || !selection.index_path.empty())
     throw InputError(path + ": --curve and --curve-index are for .npy points; a CSV names each point's curve "
                             "in its 'curve' column");
+  if (selection.begin != 0 || selection.end != UINT64_MAX)
+    throw InputError(path + ": --rows is for .npy points (a CSV's rows are not found without reading it all)");
   return open_points_csv(path, curves);
 }
 

@@ -117,9 +117,16 @@ class NpyPointReader final : public PointReader {
     if (header.shape.size() != 2 || (header.shape[1] != 2 && header.shape[1] != 3))
       fail_header(path, "shape " + shape_text(header.shape) + " is not (N, 2) or (N, 3)");
     width_ = static_cast<std::size_t>(header.shape[1]);
-    total_ = header.shape[0];
+    const std::uint64_t rows = header.shape[0];
+    progress_.bytes_total = header.data_offset + points_.expect_data(rows, 8 * width_);
+    // --rows: [begin, end) of the file's rows.
+    if (selection.begin > rows || selection.begin > selection.end)
+      throw InputError(path + ": --rows " + std::to_string(selection.begin) + ":" +
+                       (selection.end == UINT64_MAX ? std::string() : std::to_string(selection.end)) +
+                       ": the file has " + std::to_string(rows) + " points");
+    first_ = selection.begin;
+    total_ = std::min(selection.end, rows) - first_;
     progress_.points_total = total_;
-    progress_.bytes_total = header.data_offset + points_.expect_data(total_, 8 * width_);
     for (const Curve& c : curves) space_.push_back(c.dimension() == 3);
 
     if (!selection.curve.empty() && !selection.index_path.empty())
@@ -140,12 +147,16 @@ class NpyPointReader final : public PointReader {
       else fail_header(index_path, "dtype " + escaped_excerpt(index_header.descr) + " is not '<i4' or '<i8' (int32, int64)");
       // A 1-D array is the same in either order.
       if (index_header.shape.size() != 1) fail_header(index_path, "shape " + shape_text(index_header.shape) + " is not (N,)");
-      if (index_header.shape[0] != total_)
+      if (index_header.shape[0] != rows)
         fail_header(index_path, "shape " + shape_text(index_header.shape) + " does not match the " +
-                                    std::to_string(total_) + " points of " + path);
-      indices_->expect_data(total_, index_bytes_);
+                                    std::to_string(rows) + " points of " + path);
+      indices_->expect_data(rows, index_bytes_);
     } else {
       throw InputError(path + ": a .npy of points needs --curve ID or --curve-index FILE.npy to name the curves");
+    }
+    if (first_ > 0) {
+      skip(points_, first_ * 8 * width_);
+      if (indices_) skip(*indices_, first_ * index_bytes_);
     }
   }
 
@@ -172,13 +183,24 @@ class NpyPointReader final : public PointReader {
       if (*row.reason != '\0') row.curve = -1;
     }
     progress_.points += count;
-    progress_.bytes = points_.header().data_offset + progress_.points * 8 * width_;
+    progress_.bytes = points_.header().data_offset + (first_ + progress_.points) * 8 * width_;
     return count;
   }
 
   ReadProgress progress() const override { return progress_; }
 
  private:
+  // Moves past `bytes` of the data: a seek in a regular file, reading them in a pipe.
+  static void skip(const NpyFile& file, std::uint64_t bytes) {
+    if (fseeko(file.file(), static_cast<off_t>(bytes), SEEK_CUR) == 0) return;
+    std::vector<unsigned char> buffer(1 << 16);
+    while (bytes > 0) {
+      const std::size_t step = static_cast<std::size_t>(std::min<std::uint64_t>(bytes, buffer.size()));
+      read_npy_data(file.file(), file.path(), buffer.data(), step);
+      bytes -= step;
+    }
+  }
+
   int curve_at(std::size_t i, const char*& reason) const {
     std::int64_t index = 0;
     if (index_bytes_ == 4) {
@@ -201,7 +223,8 @@ class NpyPointReader final : public PointReader {
 
   NpyFile points_;
   std::size_t curve_count_;
-  std::uint64_t total_ = 0;
+  std::uint64_t total_ = 0;          // rows read: the --rows range's, else the file's
+  std::uint64_t first_ = 0;          // the first of them
   std::size_t width_ = 2;             // 2 (x, y) or 3 (x, y, z) doubles a row
   std::vector<bool> space_;           // curve i is a space curve
   int curve_ = -1;                    // --curve
@@ -213,6 +236,12 @@ class NpyPointReader final : public PointReader {
 };
 
 }  // namespace
+
+std::uint64_t npy_rows(const std::string& path) {
+  const NpyFile file(path);
+  if (file.header().shape.size() != 2) fail_header(path, "shape " + shape_text(file.header().shape) + " is not (N, 2) or (N, 3)");
+  return file.header().shape[0];
+}
 
 namespace detail {
 

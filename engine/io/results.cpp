@@ -15,6 +15,7 @@
 
 #include "bezinv/io.hpp"
 #include "io/npy.hpp"
+#include "io/result_record.hpp"
 #include "io/output_target.hpp"
 
 namespace bezinv {
@@ -111,12 +112,8 @@ class CsvResultWriter final : public ResultWriter {
   std::vector<std::string> blocks_;
 };
 
-// OUT.npy's record: packed (numpy's default for a list dtype), little-endian.
-constexpr std::string_view kResultDescr =
-    "[('t', '<f8'), ('residual', '<f8'), ('t2', '<f8'), ('sigma_min', '<f8'), ('sigma_next', '<f8'), "
-    "('status', '|u1'), ('path', '|u1')]";
-constexpr std::size_t kRecordBytes = 5 * 8 + 2;
-static_assert(std::endian::native == std::endian::little, "the .npy writer assumes a little-endian host");
+using detail::kRecordBytes;
+using detail::kResultDescr;
 
 class NpyResultWriter final : public ResultWriter {
  public:

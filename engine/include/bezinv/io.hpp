@@ -71,6 +71,9 @@ struct PointRow {
 struct CurveSelection {
   std::string curve;        // `--curve`: an id, or a 0-based index, for every point
   std::string index_path;   // `--curve-index`: int32 or int64 (N,) .npy, 0-based curve index per point
+  // `--rows A:B`: only rows [begin, end) of a .npy (end past the last row: to the last), so that
+  // machines can share one file; a CSV with a range is an InputError.
+  std::uint64_t begin = 0, end = UINT64_MAX;
 };
 
 // How far a reader has got, for a progress display. Totals are 0 when unknown (a CSV's row count;
@@ -91,7 +94,8 @@ class PointReader {
   virtual ReadProgress progress() const = 0;
 };
 
-// POINTS.csv or POINTS.npy (by extension). Throws InputError for an unusable header at once.
+// POINTS.csv or POINTS.npy (by extension). Throws InputError for an unusable header at once, and
+// for a row range that starts past the last row.
 std::unique_ptr<PointReader> open_points(const std::string& path, const std::vector<Curve>& curves,
                                          const CurveSelection& selection = {});
 
@@ -117,6 +121,21 @@ std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads 
 // For commands: SIGINT, SIGTERM and SIGHUP (unless ignored) remove the temporary file of every
 // open ResultWriter, then end the process by the same signal. Call once, before open_results.
 void remove_temporary_outputs_on_signals();
+
+// The number of rows of a POINTS.npy (its shape's first entry), from its header alone. Throws
+// InputError as open_points does for a file that is not one.
+std::uint64_t npy_rows(const std::string& path);
+
+// OUT.npy read back a chunk at a time (bezinv merge), the rows as written (reason is not stored in
+// a .npy: empty). Throws InputError naming the file for one that is not an OUT.npy.
+class ResultReader {
+ public:
+  virtual ~ResultReader() = default;
+  virtual std::uint64_t rows() const = 0;
+  // Fills results from the front; returns how many (0 at the end).
+  virtual std::size_t read(std::span<PointResult> results) = 0;
+};
+std::unique_ptr<ResultReader> open_results_npy(const std::string& path);
 
 // OUT.csv at once (small results, tests): open_results, write, commit.
 void write_results_csv(const std::string& path, std::span<const PointResult> results);

@@ -1,0 +1,80 @@
+#include "merge.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <memory>
+#include <cstdio>
+#include <stdexcept>
+#include <system_error>
+
+#include "bezinv/io.hpp"
+
+namespace bezinv::cli {
+namespace {
+
+bool parse_count(std::string_view text, std::uint64_t& value) {
+  const auto [stop, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && stop == text.data() + text.size() && !text.empty();
+}
+
+// OUT's format is chosen by extension as bezinv invert chooses it (".npy" in any case).
+bool names_npy(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string tail = path.substr(path.size() - 4);
+  for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return tail == ".npy";
+}
+
+std::string range_text(const MergePart& p) { return std::to_string(p.begin) + ":" + std::to_string(p.end); }
+
+}  // namespace
+
+MergePart parse_merge_part(const std::string& text) {
+  // A:B=PATH, split at the first '=' (a path may hold one; a range cannot).
+  const std::size_t equals = text.find('='), colon = text.find(':');
+  MergePart part;
+  if (equals == std::string::npos || colon == std::string::npos || colon > equals ||
+      !parse_count(std::string_view(text).substr(0, colon), part.begin) ||
+      !parse_count(std::string_view(text).substr(colon + 1, equals - colon - 1), part.end) || part.begin > part.end ||
+      equals + 1 == text.size())
+    throw std::invalid_argument("part '" + text + "': expected A:B=PATH (the --rows range the part was made with, "
+                                "then its OUT.npy)");
+  part.path = text.substr(equals + 1);
+  return part;
+}
+
+int run_merge(std::uint64_t rows, std::vector<MergePart> parts, const std::string& out_path) {
+  if (!names_npy(out_path))
+    throw InputError(out_path + ": --out of bezinv merge is a .npy (the parts carry no reason column for a CSV)");
+  std::stable_sort(parts.begin(), parts.end(), [](const MergePart& a, const MergePart& b) { return a.begin < b.begin; });
+  // Every row once, in order: the ranges tile [0, rows) -- each begins where the one before ended,
+  // the first at 0, the last at or past the end -- and each file holds its range's rows.
+  std::uint64_t next = 0;
+  std::vector<std::unique_ptr<ResultReader>> readers;
+  for (const MergePart& p : parts) {
+    if (p.begin != next)
+      throw InputError(p.path + ": rows " + range_text(p) + ": " +
+                       (p.begin < next ? "overlaps the part before it" : "rows " + std::to_string(next) + " to " +
+                                                                              std::to_string(p.begin) + " are in no part"));
+    if (next >= rows && !(p.begin == p.end && rows == 0))
+      throw InputError(p.path + ": rows " + range_text(p) + ": past the " + std::to_string(rows) + " points");
+    std::unique_ptr<ResultReader> reader = open_results_npy(p.path);
+    const std::uint64_t expected = std::min(p.end, rows) - p.begin;
+    if (reader->rows() != expected)
+      throw InputError(p.path + ": " + std::to_string(reader->rows()) + " rows, but --rows " + range_text(p) + " of " +
+                       std::to_string(rows) + " points gives " + std::to_string(expected));
+    readers.push_back(std::move(reader));
+    next = std::min(p.end, rows);
+  }
+  if (next != rows)
+    throw InputError("rows " + std::to_string(next) + " to " + std::to_string(rows) + " are in no part");
+  const std::unique_ptr<ResultWriter> writer = open_results(out_path);
+  std::vector<PointResult> chunk(std::size_t{1} << 16);
+  for (const auto& reader : readers)
+    while (const std::size_t count = reader->read(chunk)) writer->write(std::span<const PointResult>(chunk.data(), count));
+  writer->commit();
+  return 0;
+}
+
+}  // namespace bezinv::cli
