@@ -434,7 +434,7 @@ Curve parse_curve(const json& entry, std::string& where) {
   if (kind == "matrix_weighted_bezier") {
     const MatrixWeightedCurve m = parse_matrix_weighted(entry, id, where);
     try {
-      Curve converted = rational_curve(convert(m), std::move(id));
+      Curve converted = lowest_terms_curve(m, std::move(id));
       validate(converted);  // degree d n: a space curve of degree above 10 converts past kMaxDegree
       return converted;
     } catch (const CurveError& e) {

@@ -188,6 +188,27 @@ Curve plane_curve(const ConvertedCurve& converted, std::string id) {
   return Curve::rational(std::move(id), x, converted.weights, y, converted.weights);
 }
 
+Curve lowest_terms_curve(const MatrixWeightedCurve& curve, std::string id) {
+  const int d = curve.dimension;
+  std::vector<double> scale;
+  for (const Matrix3& m : curve.matrices) {
+    // s I exactly: equal diagonal, zero elsewhere (in the curve's dimension).
+    bool scalar = m[0] > 0;
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c) scalar = scalar && m[3 * r + c] == (r == c ? m[0] : 0.0);
+    if (!scalar) return rational_curve(convert(curve), std::move(id));
+    scale.push_back(m[0]);
+  }
+  if (d == 3) {
+    std::vector<std::array<double, 3>> points;
+    for (const Vector3& p : curve.points) points.push_back({p[0], p[1], p[2]});
+    return Curve::space_rational_bezier(std::move(id), points, scale);
+  }
+  std::vector<std::array<double, 2>> points;
+  for (const Vector3& p : curve.points) points.push_back({p[0], p[1]});
+  return Curve::rational_bezier(std::move(id), points, scale);
+}
+
 Curve rational_curve(const ConvertedCurve& converted, std::string id) {
   Curve curve = plane_curve(converted, std::move(id));
   if (converted.dimension == 3) {

@@ -57,4 +57,11 @@ Curve plane_curve(const ConvertedCurve& converted, std::string id);
 // The same in the converted curve's dimension (a space curve: z_num, z_den too).
 Curve rational_curve(const ConvertedCurve& converted, std::string id);
 
+// The curve the engine inverts, in lowest terms where that is known exactly: when every M_i is
+// s_i I (s_i > 0), Q(t) = sum B_i s_i P_i / sum B_i s_i is the rational Bezier curve of weights s_i at
+// degree n -- the conversion's degree 2n (or 3n) carries the factor sum s_i B_i in every polynomial,
+// to rounding, which no exact gcd finds. Otherwise rational_curve(convert(curve)). Throws CurveError
+// as convert does.
+Curve lowest_terms_curve(const MatrixWeightedCurve& curve, std::string id);
+
 }  // namespace bezinv
