@@ -316,8 +316,8 @@ void interleaved_values(const SpaceData& space, int r, bool forward, double s, d
 
 }  // namespace
 
-SpaceJet space_jet(const SpaceData& space, double t) {
-  double value[3][6];  // [derivative order][num x, y, z, den x, y, z]
+SpaceJet space_jet(const SpaceData& space, double t, int orders) {
+  double value[3][6] = {};  // [derivative order][num x, y, z, den x, y, z] (orders not asked for: 0)
   if (t >= 0.0 && t <= 1.0) {
     const bool forward = t <= 0.5;
     const double u = forward ? 1 - t : t, s = forward ? t / u : (1 - t) / u;
@@ -326,7 +326,7 @@ SpaceJet space_jet(const SpaceData& space, double t) {
     double power = 1;
     for (int i = 0; i < n - 2; ++i) power *= u;
     const double powers[3] = {n >= 2 ? power * u * u : n == 1 ? u : 1.0, n >= 2 ? power * u : 1.0, power};
-    for (int r = 0; r < 3; ++r) interleaved_values(space, r, forward, s, powers[r], value[r]);
+    for (int r = 0; r < orders; ++r) interleaved_values(space, r, forward, s, powers[r], value[r]);
   } else {
     const SpaceEvaluation at(space, t);
     for (int k = 0; k < 3; ++k) {
@@ -339,10 +339,11 @@ SpaceJet space_jet(const SpaceData& space, double t) {
   for (int k = 0; k < 3; ++k) {
     const double N = value[0][k], D = value[0][3 + k], N1 = value[1][k], D1 = value[1][3 + k], N2 = value[2][k],
                  D2 = value[2][3 + k];
-    const double x = N / D, x1 = (N1 - D1 * x) / D;
+    const double inverse = 1 / D;  // one division for the three quotients
+    const double x = N * inverse, x1 = (N1 - D1 * x) * inverse;
     j.p[k] = x;
     j.dp[k] = x1;
-    j.ddp[k] = (N2 - 2 * D1 * x1 - D2 * x) / D;
+    j.ddp[k] = (N2 - 2 * D1 * x1 - D2 * x) * inverse;
   }
   return j;
 }
@@ -358,16 +359,27 @@ double space_distance(const SpaceData& space, const std::array<double, 3>& point
 }
 
 SpaceRefined space_refine(const SpaceData& space, const std::array<double, 3>& point, double t0, bool on_segment) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
   double t = on_segment ? std::clamp(t0, 0.0, 1.0) : t0;
-  SpaceJet j = space_jet(space, t);
   auto distance_of = [&](const SpaceJet& jet) {
     const double dx = jet.p[0] - point[0], dy = jet.p[1] - point[1], dz = jet.p[2] - point[2];
     const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
     // (hypot is several times slower; it is needed only where the squares overflow: a far point)
     return std::isfinite(d) ? d : std::hypot(dx, dy, dz);
   };
+  // The common case first, without second derivatives: a point on the curve, whose plane answer
+  // is its parameter to rounding already -- the Gauss-Newton step (P'' times the tiny |P - P0|
+  // left out) is below rounding.
+  SpaceJet j = space_jet(space, t, 2);
   SpaceRefined best{t, distance_of(j)};
   if (!std::isfinite(best.distance)) return best;
+  {
+    double g = 0, speed2 = 0;
+    for (int k = 0; k < 3; ++k) g += (j.p[k] - point[k]) * j.dp[k], speed2 += j.dp[k] * j.dp[k];
+    if (speed2 > 0 && std::abs(g / speed2) <= 2 * eps * std::max(1.0, std::abs(t)) + 2 * eps / std::sqrt(speed2))
+      return best;
+  }
+  j = space_jet(space, t);
   for (int iteration = 0; iteration < 60; ++iteration) {
     double g = 0, speed2 = 0, curvature = 0;
     for (int k = 0; k < 3; ++k) {
@@ -381,9 +393,7 @@ SpaceRefined space_refine(const SpaceData& space, const std::array<double, 3>& p
     if (!(h > 0) || !std::isfinite(g)) break;
     double step = -g / h;
     // A step below rounding -- of t itself, and of the point's coordinates (~1 in normalized
-    // units) over the speed -- leaves t where it is: the common case of a point on the curve,
-    // whose plane answer is already the parameter to full precision.
-    constexpr double eps = std::numeric_limits<double>::epsilon();
+    // units) over the speed -- leaves t where it is.
     if (std::abs(step) <= 2 * eps * std::max(1.0, std::abs(t)) + 2 * eps / std::sqrt(speed2)) break;
     // A step is taken where it reduces the distance, or (near the minimum, where the distance is
     // flat to rounding and cannot tell two parameters apart) where it keeps the distance to rounding

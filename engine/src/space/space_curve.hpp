@@ -67,7 +67,8 @@ Curve projected_curve(const SpaceData& space);
 struct SpaceJet {
   std::array<double, 3> p, dp, ddp;
 };
-SpaceJet space_jet(const SpaceData& space, double t);
+// orders 2: P and P' only (ddp zero).
+SpaceJet space_jet(const SpaceData& space, double t, int orders = 3);
 double space_distance(const SpaceData& space, const std::array<double, 3>& point, double t);
 
 // Newton's method on (P(t) - P0) . P'(t) = 0 from t0, safeguarded (a step that does not reduce the
