@@ -446,9 +446,12 @@ int main(int argc, char** argv) {
     }
     if (invert->parsed()) {
       if (!invert_rows.empty()) {
-        const bezinv::cli::MergePart range = bezinv::cli::parse_merge_part(invert_rows + "=-");
-        invert_arguments.selection.begin = range.begin;
-        invert_arguments.selection.end = range.end;
+        try {
+          std::tie(invert_arguments.selection.begin, invert_arguments.selection.end) =
+              bezinv::cli::parse_row_range(invert_rows);
+        } catch (const std::invalid_argument& e) {
+          throw bezinv::InputError(std::string("--rows ") + e.what());
+        }
       }
       invert_arguments.threads = checked_threads(invert_threads);
       check_chunk_points(invert_arguments.chunk_points);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <system_error>
+#include <tuple>
 
 #include "bezinv/io.hpp"
 
@@ -30,16 +31,26 @@ std::string range_text(const MergePart& p) { return std::to_string(p.begin) + ":
 
 }  // namespace
 
+std::pair<std::uint64_t, std::uint64_t> parse_row_range(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  std::uint64_t begin = 0, end = 0;
+  if (colon == std::string::npos || !parse_count(std::string_view(text).substr(0, colon), begin) ||
+      !parse_count(std::string_view(text).substr(colon + 1), end) || begin > end)
+    throw std::invalid_argument("'" + text + "': expected A:B, 0-based rows A to B - 1, A <= B");
+  return {begin, end};
+}
+
 MergePart parse_merge_part(const std::string& text) {
   // A:B=PATH, split at the first '=' (a path may hold one; a range cannot).
-  const std::size_t equals = text.find('='), colon = text.find(':');
+  const std::size_t equals = text.find('=');
   MergePart part;
-  if (equals == std::string::npos || colon == std::string::npos || colon > equals ||
-      !parse_count(std::string_view(text).substr(0, colon), part.begin) ||
-      !parse_count(std::string_view(text).substr(colon + 1, equals - colon - 1), part.end) || part.begin > part.end ||
-      equals + 1 == text.size())
+  try {
+    if (equals == std::string::npos || equals + 1 == text.size()) throw std::invalid_argument("");
+    std::tie(part.begin, part.end) = parse_row_range(text.substr(0, equals));
+  } catch (const std::invalid_argument&) {
     throw std::invalid_argument("part '" + text + "': expected A:B=PATH (the --rows range the part was made with, "
                                 "then its OUT.npy)");
+  }
   part.path = text.substr(equals + 1);
   return part;
 }
@@ -57,7 +68,7 @@ int run_merge(std::uint64_t rows, std::vector<MergePart> parts, const std::strin
       throw InputError(p.path + ": rows " + range_text(p) + ": " +
                        (p.begin < next ? "overlaps the part before it" : "rows " + std::to_string(next) + " to " +
                                                                               std::to_string(p.begin) + " are in no part"));
-    if (next >= rows && !(p.begin == p.end && rows == 0))
+    if (p.begin > 0 && p.begin >= rows)  // only the first part may start at the end (no rows at all)
       throw InputError(p.path + ": rows " + range_text(p) + ": past the " + std::to_string(rows) + " points");
     std::unique_ptr<ResultReader> reader = open_results_npy(p.path);
     const std::uint64_t expected = std::min(p.end, rows) - p.begin;

@@ -4,6 +4,7 @@
 // order.
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace bezinv::cli {
@@ -12,6 +13,9 @@ struct MergePart {
   std::uint64_t begin = 0, end = 0;  // the --rows range the part was made with (end may pass the last row)
   std::string path;
 };
+
+// "A:B" (A <= B, both counts) -> the range; throws std::invalid_argument naming the text.
+std::pair<std::uint64_t, std::uint64_t> parse_row_range(const std::string& text);
 
 // "A:B=PATH" -> a part; throws std::invalid_argument naming the text.
 MergePart parse_merge_part(const std::string& text);

@@ -82,6 +82,9 @@ class CurveLookup {
     for (std::size_t i = 0; i < curves.size(); ++i) index_of_id_.emplace(curves[i].id, static_cast<int>(i));
   }
 
+  // Whether curve i (an index find returned) is a space curve, whose points need z.
+  bool is_space(int curve) const { return space_[static_cast<std::size_t>(curve)]; }
+
   // Curve index, or -1 with *reason set.
   int find(std::string_view field, const char*& reason) {
     if (has_last_ && field == last_field_) {
@@ -127,9 +130,7 @@ class CurveLookup {
 
   std::unordered_map<std::string_view, int> index_of_id_;
   std::size_t count_;
- public:
   std::vector<bool> space_;  // curve i is a space curve (its points need z)
- private:
   bool has_last_ = false;
   std::string last_field_;
   int last_curve_ = -1;
@@ -340,7 +341,7 @@ class CsvPointReader final : public PointReader {
       if (*row.reason == '\0' && z != Parsed::ok) row.reason = z == Parsed::not_a_number ? kZNotANumber : kZNotFinite;
     }
     if (*row.reason == '\0' && row.curve >= 0) {
-      const bool space = lookup_.space_[static_cast<std::size_t>(row.curve)];
+      const bool space = lookup_.is_space(row.curve);
       if (space && !has_z) row.reason = kZMissing;
       if (!space && has_z) row.reason = kZForPlaneCurve;
     }

@@ -126,8 +126,9 @@ void invert(const InversionPlan& plan, std::span<const Point3> points, std::span
 
 void invert(std::span<const InversionPlan> plans, std::span<const int> curve_of, std::span<const Point> points,
             std::span<const double> z, std::span<PointResult> results, const InvertOptions& options) {
-  bool space = false;
-  for (std::size_t i = 0; i < curve_of.size(); ++i) space = space || (curve_of[i] >= 0 && plans[curve_of[i]].dimension() == 3);
+  bool space = false;  // (looked at once per run of one curve: files are usually grouped by curve)
+  for (std::size_t i = 0; i < curve_of.size() && !space; ++i)
+    space = curve_of[i] >= 0 && (i == 0 || curve_of[i] != curve_of[i - 1]) && plans[curve_of[i]].dimension() == 3;
   if (space && z.size() != points.size())
     throw std::invalid_argument("bezinv::invert: points of space curves need z for every point");
   detail::invert_curves(plans, curve_of, points, z, results, options);

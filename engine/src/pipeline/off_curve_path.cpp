@@ -50,10 +50,7 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
   const bool projection = projects_off_curve(plan, options);
   if (projection) projection_path(plan, options, count, w, results);
 
-  // Both proofs hold for a radius a little above the tolerance: a distance computed at any t is
-  // within ~n eps of the true one (normalized coordinates), far below kIsolationMargin.
-  const double tolerance = normalized_tolerance(plan, options);
-  const double radius = tolerance * (1 + kIsolationMargin) + kIsolationMargin;
+  const double radius = off_curve_radius(normalized_tolerance(plan, options));
 
   // 1. A start per lane, compacted: where the fast path's refinement ended on the segment (a
   //    local minimum of the distance, often the nearest; its t and distance are

@@ -13,6 +13,7 @@
 #include <cstddef>
 
 #include "bezinv/invert.hpp"
+#include "bezinv/tolerances.hpp"
 #include "pipeline/stage_clock.hpp"
 #include "pipeline/workspace.hpp"
 #include "plan_data.hpp"
@@ -22,6 +23,10 @@ namespace bezinv::detail {
 // Points farther than this (normalized units: the curve's size is ~1) are left to the SVD path,
 // which looks at them from a stand-in on their ray (refine.hpp, kFarEqualDistances).
 inline constexpr double kOffCurvePathMaxCoordinate = 1e6;
+
+// The radius both proofs hold for: a little above the tolerance, since a distance computed at any t
+// is within ~n eps of the true one (normalized coordinates), far below kIsolationMargin.
+inline double off_curve_radius(double tolerance) { return tolerance * (1 + kIsolationMargin) + kIsolationMargin; }
 
 void off_curve_path(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
                     PointResult* results, StageClock& clock);

@@ -30,9 +30,7 @@ void project_off_curve(const PlanData& plan, double u0, double v0, PointResult& 
 
 void projection_path(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
                      PointResult* results) {
-  // The off-curve path's radius: a distance computed at any t is within ~n eps of the true one.
-  const double tolerance = normalized_tolerance(plan, options);
-  const double radius = tolerance * (1 + kIsolationMargin) + kIsolationMargin;
+  const double tolerance = normalized_tolerance(plan, options), radius = off_curve_radius(tolerance);
   const FormulaPathData& f = formula_path_data(plan);
   for (std::size_t l = 0; l < count; ++l) {
     if (!w.active[l] || !(std::max(std::abs(w.u[l]), std::abs(w.v[l])) <= kOffCurvePathMaxCoordinate)) continue;

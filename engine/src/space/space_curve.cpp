@@ -268,34 +268,6 @@ Curve projected_curve(const SpaceData& space) {
 
 namespace {
 
-// The values at t of the polynomials `which` of the three coordinates, by Horner's rule with the
-// powers of u shared (t in [0, 1]), by de Casteljau elsewhere.
-class SpaceEvaluation {
- public:
-  SpaceEvaluation(const SpaceData& space, double t) : inside_(t >= 0.0 && t <= 1.0), t_(t) {
-    if (!inside_) return;
-    forward_ = t <= 0.5;
-    const double u = forward_ ? 1 - t : t;
-    s_ = forward_ ? t / u : (1 - t) / u;
-    powers_[0] = 1;
-    for (int m = 1; m <= space.degree && m < static_cast<int>(powers_.size()); ++m) powers_[m] = powers_[m - 1] * u;
-  }
-  double operator()(const SpacePolynomial& p) const {
-    const int m = p.degree();
-    if (m <= 0) return p.c.empty() ? 0.0 : p.c[0];
-    return inside_ ? p.horner(forward_, s_) * powers_[m] : bernstein_value(p.c, t_);
-  }
-
- private:
-  bool inside_, forward_ = true;
-  double t_, s_ = 0;
-  std::array<double, kMaxDegree + 1> powers_;  // u^m, m = 0..degree (the rest unset)
-};
-
-}  // namespace
-
-namespace {
-
 // The six polynomials num x, y, z, den x, y, z of derivative order r at t in [0, 1], side by side
 // (SpaceData::interleaved): Horner's rule in s = t / (1 - t) (or (1 - t) / t past 1/2), times u^m.
 void interleaved_values(const SpaceData& space, int r, bool forward, double s, double power, double* out) {
@@ -327,12 +299,11 @@ SpaceJet space_jet(const SpaceData& space, double t, int orders) {
     for (int i = 0; i < n - 2; ++i) power *= u;
     const double powers[3] = {n >= 2 ? power * u * u : n == 1 ? u : 1.0, n >= 2 ? power * u : 1.0, power};
     for (int r = 0; r < orders; ++r) interleaved_values(space, r, forward, s, powers[r], value[r]);
-  } else {
-    const SpaceEvaluation at(space, t);
+  } else {  // the extension: de Casteljau (SpacePolynomial's own evaluation)
     for (int k = 0; k < 3; ++k) {
-      value[0][k] = at(space.num[k]), value[0][3 + k] = at(space.den[k]);
-      value[1][k] = at(space.d_num[k]), value[1][3 + k] = at(space.d_den[k]);
-      value[2][k] = at(space.dd_num[k]), value[2][3 + k] = at(space.dd_den[k]);
+      value[0][k] = space.num[k](t), value[0][3 + k] = space.den[k](t);
+      value[1][k] = space.d_num[k](t), value[1][3 + k] = space.d_den[k](t);
+      value[2][k] = space.dd_num[k](t), value[2][3 + k] = space.dd_den[k](t);
     }
   }
   SpaceJet j;
@@ -348,25 +319,21 @@ SpaceJet space_jet(const SpaceData& space, double t, int orders) {
   return j;
 }
 
+double space_distance(const SpaceJet& jet, const std::array<double, 3>& point) {
+  const double dx = jet.p[0] - point[0], dy = jet.p[1] - point[1], dz = jet.p[2] - point[2];
+  const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+  // (hypot is several times slower; it is needed only where the squares overflow: a far point)
+  return std::isfinite(d) ? d : std::hypot(dx, dy, dz);
+}
+
 double space_distance(const SpaceData& space, const std::array<double, 3>& point, double t) {
-  const SpaceEvaluation at(space, t);
-  double d2 = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double e = at(space.num[k]) / at(space.den[k]) - point[k];
-    d2 += e * e;
-  }
-  return std::sqrt(d2);
+  return space_distance(space_jet(space, t, 1), point);
 }
 
 SpaceRefined space_refine(const SpaceData& space, const std::array<double, 3>& point, double t0, bool on_segment) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   double t = on_segment ? std::clamp(t0, 0.0, 1.0) : t0;
-  auto distance_of = [&](const SpaceJet& jet) {
-    const double dx = jet.p[0] - point[0], dy = jet.p[1] - point[1], dz = jet.p[2] - point[2];
-    const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-    // (hypot is several times slower; it is needed only where the squares overflow: a far point)
-    return std::isfinite(d) ? d : std::hypot(dx, dy, dz);
-  };
+  auto distance_of = [&](const SpaceJet& jet) { return space_distance(jet, point); };
   // The common case first, without second derivatives: a point on the curve, whose plane answer
   // is its parameter to rounding already -- the Gauss-Newton step (P'' times the tiny |P - P0|
   // left out) is below rounding.

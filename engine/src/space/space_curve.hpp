@@ -63,12 +63,13 @@ SpaceData make_space_data(const Curve& curve);
 // The projected plane curve (the same kind; ids kept), whose plan inverts the projected points.
 Curve projected_curve(const SpaceData& space);
 
-// P(t) - (u0, v0, w0) and |.|, normalized units; and its first two derivatives in t.
+// P(t) and its first two derivatives in t, normalized units; |P(t) - P0|.
 struct SpaceJet {
   std::array<double, 3> p, dp, ddp;
 };
-// orders 2: P and P' only (ddp zero).
+// orders 2: P and P' only; 1: P only (the others zero).
 SpaceJet space_jet(const SpaceData& space, double t, int orders = 3);
+double space_distance(const SpaceJet& jet, const std::array<double, 3>& point);
 double space_distance(const SpaceData& space, const std::array<double, 3>& point, double t);
 
 // Newton's method on (P(t) - P0) . P'(t) = 0 from t0, safeguarded (a step that does not reduce the
