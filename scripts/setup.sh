@@ -6,6 +6,8 @@ packages=(g++ cmake make ninja-build git pkg-config
           libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev
           libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev libmpfr-dev
           libhwy-dev python3
+          python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module and its tests
+          python3-dask python3-distributed                       # bezinv.dask and its LocalCluster test
           chromium-headless-shell)  # the stress report rendered in a real browser (tests/cli/cli_stress_test.cpp)
 missing=()
 for p in "${packages[@]}"; do

@@ -9,7 +9,7 @@ jobs="$(nproc)"
 
 # Options are passed explicitly: build/ may hold a cache from scripts/demo.sh (tests off) or
 # scripts/bench.sh (benchmarks on: no test runs them, and building them here only costs time).
-cmake $(generator_args build) -S . -B build -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF -DBEZINV_BUILD_TESTS=ON -DBEZINV_BUILD_BENCH=OFF -DBEZINV_KERNEL_TARGETS=all >/dev/null
+cmake $(generator_args build) -S . -B build -DCMAKE_BUILD_TYPE=Release -DBEZINV_SANITIZE=OFF -DBEZINV_BUILD_TESTS=ON -DBEZINV_BUILD_BENCH=OFF -DBEZINV_KERNEL_TARGETS=all -DBEZINV_PYTHON=ON >/dev/null
 cmake --build build -j"$jobs"
 (cd build && ctest --output-on-failure --no-tests=error -j"$jobs")
 

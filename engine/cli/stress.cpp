@@ -193,7 +193,18 @@ std::vector<baselines::Library> parse_baselines(const std::string& list) {
   return libraries;
 }
 
-int run_stress(const StressOptions& options) {
+namespace {
+
+// What a run found: its cells and the JSON object --json prints, with the totals.
+struct StressRun {
+  std::vector<Cell> cells;
+  nlohmann::json out;
+  double generation_seconds = 0;
+  std::size_t rows = 0, wrong = 0, nan_t = 0, missing_t2 = 0;
+};
+
+// The whole run; `report` (--report), when given, collects every row for the page.
+StressRun run(const StressOptions& options, StressReport* report) {
   // 1. The curves and their rows, truths included, in parallel (the high-precision truth is the
   //    expensive part).
   std::vector<CurveRows> curves;
@@ -226,9 +237,10 @@ int run_stress(const StressOptions& options) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - generation_start).count();
 
   // 2. Every path over every cell's curves.
-  std::vector<Cell> cells;
-  StressReport report;
-  const bool reporting = !options.report_directory.empty();
+  StressRun result;
+  result.generation_seconds = generation_seconds;
+  std::vector<Cell>& cells = result.cells;
+  const bool reporting = report != nullptr;
   for (StressPath path : options.paths) {
     const InvertOptions invert_options = options_for(path, options);
     for (std::size_t first = 0; first < curves.size(); first += static_cast<std::size_t>(options.curves)) {
@@ -251,7 +263,7 @@ int run_stress(const StressOptions& options) {
         for (std::size_t k = 0; k < c.rows.size(); ++k) cell.tally.add(c.rows[k], results[k], c.plan->diagonal());
         if (reporting)
           for (std::size_t k = 0; k < c.rows.size(); ++k)
-            report.add({c.family, c.kind, c.degree, to_string(path), &c.plan->curve()}, c.rows[k], results[k]);
+            report->add({c.family, c.kind, c.degree, to_string(path), &c.plan->curve()}, c.rows[k], results[k]);
       }
       if (cell.tally.rows > 0) cells.push_back(std::move(cell));  // a family that does not apply here
     }
@@ -275,7 +287,7 @@ int run_stress(const StressOptions& options) {
           PointResult got;
           got.status = row.expected;
           got.t = projector->parameter(row.point);
-          if (reporting) report.add_baseline(c.family, baselines::to_string(library), row, got.t);
+          if (reporting) report->add_baseline(c.family, baselines::to_string(library), row, got.t);
           cell.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
           got.residual = PointResult::nan;  // the library's distance is not asked for
           StressRow compared = row;
@@ -293,8 +305,11 @@ int run_stress(const StressOptions& options) {
     }
   }
 
-  // 3. The report.
-  std::size_t rows = 0, wrong = 0, nan_t = 0, missing_t2 = 0;
+  // 3. The totals and the JSON object.
+  std::size_t& rows = result.rows;
+  std::size_t& wrong = result.wrong;
+  std::size_t& nan_t = result.nan_t;
+  std::size_t& missing_t2 = result.missing_t2;
   for (const Cell& cell : cells) {
     if (cell.baseline) continue;
     rows += cell.tally.rows;
@@ -303,7 +318,7 @@ int run_stress(const StressOptions& options) {
     missing_t2 += cell.tally.missing_t2;
   }
   {
-    nlohmann::json out;
+    nlohmann::json& out = result.out;
     out["command"] = "stress";
     out["seed"] = options.seed;
     out["relative_tolerance"] = options.relative_tolerance;
@@ -338,14 +353,28 @@ int run_stress(const StressOptions& options) {
                               {"residual_error_over_diagonal", quantiles_json(t.residual_error)},
                               {"points_per_second", cell.seconds > 0 ? t.rows / cell.seconds : 0.0}});
     }
-    if (options.json) std::printf("%s\n", out.dump(2).c_str());
-    if (reporting) {
-      try {
-        report.write(options.report_directory, out);
-      } catch (const std::exception& e) {  // a directory or file that cannot be written: named
-        std::fprintf(stderr, "bezinv: stress --report: %s\n", e.what());
-        return 2;
-      }
+  }
+  return result;
+}
+
+}  // namespace
+
+std::string stress_json(const StressOptions& options) { return run(options, nullptr).out.dump(2); }
+
+int run_stress(const StressOptions& options) {
+  StressReport report;
+  const bool reporting = !options.report_directory.empty();
+  const StressRun result = run(options, reporting ? &report : nullptr);
+  const std::vector<Cell>& cells = result.cells;
+  const std::size_t rows = result.rows, wrong = result.wrong, nan_t = result.nan_t, missing_t2 = result.missing_t2;
+  const double generation_seconds = result.generation_seconds;
+  if (options.json) std::printf("%s\n", result.out.dump(2).c_str());
+  if (reporting) {
+    try {
+      report.write(options.report_directory, result.out);
+    } catch (const std::exception& e) {  // a directory or file that cannot be written: named
+      std::fprintf(stderr, "bezinv: stress --report: %s\n", e.what());
+      return 2;
     }
   }
   if (!options.json) {

@@ -42,6 +42,10 @@ std::pair<int, int> parse_degrees(const std::string& range);
 // std::invalid_argument saying what to do otherwise.
 std::vector<baselines::Library> parse_baselines(const std::string& list);
 
+// The run's JSON object (what --json prints), for callers that are not the command (the Python
+// module's bezinv.stress); options.json and report_directory are not used.
+std::string stress_json(const StressOptions& options);
+
 // Prints the table (or one JSON object). Returns 0 when every status was right and every t there,
 // 1 otherwise, 2 when the --report directory cannot be written (the message names what).
 int run_stress(const StressOptions& options);

@@ -452,10 +452,12 @@ Curve parse_curve(const json& entry, std::string& where) {
 
 namespace {
 
-// The file parsed (the SAX builder knows the path of every value, for messages) and its
-// "curves" list checked.
-json parse_curves_file(const std::string& path) {
-  const std::string text = detail::read_whole_file(path, kMaxCurvesBytes, "CURVES.json");
+// The text parsed (the SAX builder knows the path of every value, for messages) and its
+// "curves" list checked; `path` names it in errors.
+json parse_curves_text(std::string_view text, const std::string& path) {
+  if (text.size() > kMaxCurvesBytes)
+    fail(path, std::to_string(text.size()) + " bytes, more than " + std::to_string(kMaxCurvesBytes) +
+                   " bytes, the limit for CURVES.json");
   LocatingBuilder builder(text);
   // strict: nothing may follow the top-level value.
   if (!json::sax_parse(text, &builder, json::input_format_t::json, /*strict=*/true)) {
@@ -473,10 +475,11 @@ json parse_curves_file(const std::string& path) {
   return root;
 }
 
-}  // namespace
+json parse_curves_file(const std::string& path) {
+  return parse_curves_text(detail::read_whole_file(path, kMaxCurvesBytes, "CURVES.json"), path);
+}
 
-std::vector<Curve> read_curves_json(const std::string& path) {
-  const json root = parse_curves_file(path);
+std::vector<Curve> curves_from_json(const json& root, const std::string& path) {
   const json& list = root["curves"];
   std::vector<Curve> curves;
   curves.reserve(list.size());
@@ -498,6 +501,14 @@ std::vector<Curve> read_curves_json(const std::string& path) {
     curves.push_back(std::move(curve));
   }
   return curves;
+}
+
+}  // namespace
+
+std::vector<Curve> read_curves_json(const std::string& path) { return curves_from_json(parse_curves_file(path), path); }
+
+std::vector<Curve> parse_curves_json(std::string_view text, const std::string& name) {
+  return curves_from_json(parse_curves_text(text, name), name);
 }
 
 std::vector<std::optional<MatrixWeightedCurve>> read_matrix_weighted_json(const std::string& path) {

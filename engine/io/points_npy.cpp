@@ -94,19 +94,6 @@ class NpyFile {
   NpyHeader header_;
 };
 
-// The curve of --curve: an id first, then a 0-based index (as in POINTS.csv).
-int selected_curve(const std::string& path, const std::vector<Curve>& curves, const std::string& selection) {
-  for (std::size_t i = 0; i < curves.size(); ++i)
-    if (curves[i].id == selection) return static_cast<int>(i);
-  const bool digits = std::all_of(selection.begin(), selection.end(), [](char c) { return c >= '0' && c <= '9'; });
-  if (digits && selection.size() < 10) {
-    const std::size_t index = std::stoul(selection);
-    if (index < curves.size()) return static_cast<int>(index);
-  }
-  throw InputError(path + ": --curve '" + selection + "': no curve has this id, nor is it an index below " +
-                   std::to_string(curves.size()));
-}
-
 class NpyPointReader final : public PointReader {
  public:
   NpyPointReader(const std::string& path, const std::vector<Curve>& curves, const CurveSelection& selection)
@@ -133,11 +120,7 @@ class NpyPointReader final : public PointReader {
       throw InputError(path + ": give --curve or --curve-index, not both");
     if (!selection.curve.empty()) {
       curve_ = selected_curve(path, curves, selection.curve);
-      // One curve for every row: a width that is not its dimension is the whole file's mistake.
-      const int dimension = curves[static_cast<std::size_t>(curve_)].dimension();
-      if (static_cast<int>(width_) != dimension)
-        fail_header(path, "shape " + shape_text(header.shape) + ": curve " + quoted_excerpt(curves[static_cast<std::size_t>(curve_)].id) +
-                              " is a " + (dimension == 3 ? "space curve, whose points are (N, 3)" : "plane curve, whose points are (N, 2)"));
+      check_width(path + ": header", shape_text(header.shape), width_, curves[static_cast<std::size_t>(curve_)]);
     } else if (!selection.index_path.empty()) {
       indices_ = std::make_unique<NpyFile>(selection.index_path);
       const NpyHeader& index_header = indices_->header();
@@ -170,17 +153,9 @@ class NpyPointReader final : public PointReader {
       read_npy_data(indices_->file(), indices_->path(), index_buffer_.data(), index_buffer_.size());
     }
     for (std::size_t i = 0; i < count; ++i) {
-      PointRow& row = rows[i];
-      row.point = {coordinates_[width_ * i], coordinates_[width_ * i + 1]};
-      row.z = width_ == 3 ? coordinates_[width_ * i + 2] : PointResult::nan;
-      row.reason = "";
-      row.curve = indices_ ? curve_at(i, row.reason) : curve_;
-      if (row.curve >= 0 && !std::isfinite(row.point.x)) row.reason = kXNotFinite;
-      else if (row.curve >= 0 && !std::isfinite(row.point.y)) row.reason = kYNotFinite;
-      else if (row.curve >= 0 && (width_ == 3) != space_[static_cast<std::size_t>(row.curve)])
-        row.reason = width_ == 3 ? kZForPlaneCurve : kZMissing;  // --curve-index: a row of the other dimension
-      else if (row.curve >= 0 && width_ == 3 && !std::isfinite(row.z)) row.reason = kZNotFinite;
-      if (*row.reason != '\0') row.curve = -1;
+      const char* reason = "";
+      const int curve = indices_ ? curve_at(i, reason) : curve_;
+      make_point_row(rows[i], &coordinates_[width_ * i], width_, curve, reason, space_);
     }
     progress_.points += count;
     progress_.bytes = points_.header().data_offset + (first_ + progress_.points) * 8 * width_;
@@ -210,15 +185,7 @@ class NpyPointReader final : public PointReader {
     } else {
       std::memcpy(&index, index_buffer_.data() + 8 * i, 8);
     }
-    if (index < 0) {
-      reason = kNegativeCurveIndex;
-      return -1;
-    }
-    if (static_cast<std::uint64_t>(index) >= curve_count_) {
-      reason = kCurveIndexPastEnd;
-      return -1;
-    }
-    return static_cast<int>(index);
+    return curve_from_index(index, curve_count_, reason);
   }
 
   NpyFile points_;
@@ -244,6 +211,26 @@ std::uint64_t npy_rows(const std::string& path) {
 }
 
 namespace detail {
+
+int selected_curve(const std::string& path, const std::vector<Curve>& curves, const std::string& selection,
+                   const char* option) {
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    if (curves[i].id == selection) return static_cast<int>(i);
+  const bool digits = std::all_of(selection.begin(), selection.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (digits && selection.size() < 10) {
+    const std::size_t index = std::stoul(selection);
+    if (index < curves.size()) return static_cast<int>(index);
+  }
+  throw InputError(path + ": " + option + " '" + selection + "': no curve has this id, nor is it an index below " +
+                   std::to_string(curves.size()));
+}
+
+void check_width(const std::string& where, const std::string& shape, std::size_t width, const Curve& curve) {
+  const int dimension = curve.dimension();
+  if (static_cast<int>(width) != dimension)
+    throw InputError(where + ": shape " + shape + ": curve " + quoted_excerpt(curve.id) + " is a " +
+                     (dimension == 3 ? "space curve, whose points are (N, 3)" : "plane curve, whose points are (N, 2)"));
+}
 
 std::unique_ptr<PointReader> open_points_npy(const std::string& path, const std::vector<Curve>& curves,
                                              const CurveSelection& selection) {

@@ -4,7 +4,6 @@
 #include <bit>
 #include <charconv>
 #include <cmath>
-#include <cstring>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -127,10 +126,7 @@ class NpyResultWriter final : public ResultWriter {
     records_.resize(results.size() * kRecordBytes);
     char* record = records_.data();
     for (const PointResult& result : results) {
-      const double numbers[5] = {result.t, result.residual, result.t2, result.sigma_min, result.sigma_next};
-      std::memcpy(record, numbers, sizeof numbers);
-      record[40] = static_cast<char>(result.status);
-      record[41] = static_cast<char>(result.path);
+      detail::pack_record(record, result);
       record += kRecordBytes;
     }
     output_.write(std::string_view(records_.data(), records_.size()));
@@ -148,7 +144,39 @@ class NpyResultWriter final : public ResultWriter {
   std::uint64_t rows_ = 0;
 };
 
+// Records into the caller's memory (a numpy array the Python module hands over).
+class MemoryResultWriter final : public ResultWriter {
+ public:
+  MemoryResultWriter(std::span<char> records, std::span<const char*> reasons) : records_(records), reasons_(reasons) {}
+
+  void write(std::span<const PointResult> results) override {
+    if (results.size() > (records_.size() - written_ * kRecordBytes) / kRecordBytes ||
+        (!reasons_.empty() && results.size() > reasons_.size() - written_))
+      throw InputError("results: more rows than the " + std::to_string(records_.size() / kRecordBytes) +
+                       " the output holds");
+    char* record = records_.data() + written_ * kRecordBytes;
+    for (std::size_t i = 0; i < results.size(); ++i, record += kRecordBytes) {
+      detail::pack_record(record, results[i]);
+      if (!reasons_.empty()) reasons_[written_ + i] = results[i].reason;
+    }
+    written_ += results.size();
+  }
+
+  void commit() override {}
+
+ private:
+  std::span<char> records_;
+  std::span<const char*> reasons_;
+  std::size_t written_ = 0;
+};
+
 }  // namespace
+
+std::string_view result_descr() { return kResultDescr; }
+
+std::unique_ptr<ResultWriter> open_results(std::span<char> records, std::span<const char*> reasons) {
+  return std::make_unique<MemoryResultWriter>(records, reasons);
+}
 
 std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads) {
   if (detail::has_npy_extension(path)) return std::make_unique<NpyResultWriter>(path);

@@ -48,6 +48,10 @@ class InputError : public std::runtime_error {
 // (degree 3n, with z).
 std::vector<Curve> read_curves_json(const std::string& path);
 
+// The same from CURVES.json text held in memory (a Python dict list, a network message); `name`
+// stands for the path in error messages.
+std::vector<Curve> parse_curves_json(std::string_view text, const std::string& name = "curves");
+
 // The matrix-weighted curves of CURVES.json as written (plane and space), at their positions in
 // the file (nullopt for the other kinds), checked as read_curves_json checks the file.
 std::vector<std::optional<MatrixWeightedCurve>> read_matrix_weighted_json(const std::string& path);
@@ -76,6 +80,20 @@ struct CurveSelection {
   std::uint64_t begin = 0, end = UINT64_MAX;
 };
 
+// Points held in memory: `rows` rows of `width` (2 or 3) doubles, x, y (, z), C order, and the
+// curve of every row: one curve for all (an id or a 0-based index, as --curve), or a 0-based
+// index per row (as --curve-index). The rows are checked as a POINTS.npy's are (a non-finite
+// coordinate, an index past the end, a row of the other dimension: invalid_input with its
+// reason); `name` stands for the path in errors. The memory is read in place, a chunk at a time,
+// and must outlive the reader.
+struct PointArray {
+  std::span<const double> coordinates;  // rows x width
+  std::size_t width = 2;
+  std::string curve;                          // one curve for every row, or
+  std::span<const std::int64_t> curve_index;  // a curve index per row (rows entries)
+  std::string name = "points";
+};
+
 // How far a reader has got, for a progress display. Totals are 0 when unknown (a CSV's row count;
 // the size of a pipe).
 struct ReadProgress {
@@ -99,6 +117,11 @@ class PointReader {
 std::unique_ptr<PointReader> open_points(const std::string& path, const std::vector<Curve>& curves,
                                          const CurveSelection& selection = {});
 
+// Reads a PointArray. Throws InputError at once for a width that is not 2 or 3, coordinates not
+// a whole number of rows, a curve that is not there or of the other dimension, or an index array
+// of another length.
+std::unique_ptr<PointReader> open_points(const PointArray& points, const std::vector<Curve>& curves);
+
 // Results in input order, a chunk at a time. A regular file (or one reached by a symbolic link)
 // is written to a temporary file beside it that commit() renames over it (atomic within a
 // directory; the old file's mode and, for root, owner carry over) or, when it has other hard
@@ -117,6 +140,13 @@ class ResultWriter {
 // round-trip precision), `nan` when absent. `threads` formats CSV rows in parallel (0: all cores).
 // The .npy header is written with room for any row count and rewritten with the count at commit.
 std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads = 0);
+
+// OUT.npy's records in memory: the bytes of its data, row after row (kResultRecordBytes each, the
+// fields of kResultDescr), written from the front of `records`, which must hold every row
+// written; `reasons` (optional, as long) gets each row's reason. commit() does nothing.
+inline constexpr std::size_t kResultRecordBytes = 5 * 8 + 2;
+std::string_view result_descr();  // numpy's descr of the record, as OUT.npy's header writes it
+std::unique_ptr<ResultWriter> open_results(std::span<char> records, std::span<const char*> reasons = {});
 
 // For commands: SIGINT, SIGTERM and SIGHUP (unless ignored) remove the temporary file of every
 // open ResultWriter, then end the process by the same signal. Call once, before open_results.

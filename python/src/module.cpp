@@ -1,0 +1,235 @@
+// _bezinv: the engine for Python (python/bezinv/__init__.py is the interface users call; this is
+// the thin layer under it). Points come in as numpy memory read in place, results go out into a
+// numpy array of OUT.npy's records, and the engine runs with the GIL released, through the same
+// reader -> invert_stream -> writer path as `bezinv invert`, so the answers are the command's,
+// byte for byte.
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bezinv/curve.hpp"
+#include "bezinv/invert.hpp"
+#include "bezinv/io.hpp"
+#include "bezinv/plan.hpp"
+#include "stress.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+// The curves of one file (or dict list), with their plans once plan() has built them: a point's
+// curve index refers to this list.
+struct Curves {
+  std::vector<bezinv::Curve> curves;
+  std::vector<bezinv::InversionPlan> plans;  // empty until planned
+};
+
+bezinv::InvertOptions options_from(double tol, bool refine, bool fast_path, const std::string& algebraic,
+                                   const std::string& off_curve, int threads) {
+  bezinv::InvertOptions options;
+  options.relative_tolerance = tol;
+  options.refine = refine;
+  options.fast_path = fast_path;
+  options.algebraic = algebraic == "formula" ? bezinv::Algebraic::formula : bezinv::Algebraic::bezout;
+  options.off_curve = off_curve == "projection" ? bezinv::OffCurve::projection : bezinv::OffCurve::nearest;
+  options.threads = threads;
+  return options;
+}
+
+// Inverts `points` (C-contiguous float64, rows x width) into `out` (OUT.npy records, rows of
+// them); `reasons` (when asked for) gets each row's reason. The caller checked the shapes.
+py::object invert(const Curves& curves, const py::array& points, std::size_t width, const std::string& curve,
+                  const py::object& curve_index, py::array& out, double tol, bool refine, bool fast_path,
+                  const std::string& algebraic, const std::string& off_curve, int threads, bool want_reasons) {
+  bezinv::PointArray array;
+  array.coordinates = std::span(static_cast<const double*>(points.data()), static_cast<std::size_t>(points.size()));
+  array.width = width;
+  array.curve = curve;
+  py::array_t<std::int64_t, py::array::c_style> index;  // held until the engine is done with it
+  if (!curve_index.is_none()) {
+    index = curve_index.cast<py::array_t<std::int64_t, py::array::c_style>>();
+    array.curve_index = std::span(index.data(), static_cast<std::size_t>(index.size()));
+  }
+  array.name = "points";
+  const std::size_t rows = array.coordinates.size() / (width == 0 ? 1 : width);
+  if (static_cast<std::size_t>(out.nbytes()) != rows * bezinv::kResultRecordBytes)
+    throw std::invalid_argument("out: " + std::to_string(out.nbytes()) + " bytes for " + std::to_string(rows) + " rows");
+  std::vector<const char*> reasons(want_reasons ? rows : 0);
+  const bezinv::InvertOptions options = options_from(tol, refine, fast_path, algebraic, off_curve, threads);
+  {
+    py::gil_scoped_release released;
+    const auto reader = bezinv::open_points(array, curves.curves);
+    const auto writer = bezinv::open_results(std::span(static_cast<char*>(out.mutable_data()), static_cast<std::size_t>(out.nbytes())),
+                                             std::span(reasons));
+    if (!curves.plans.empty()) {
+      bezinv::invert_stream(*reader, *writer, std::span<const bezinv::InversionPlan>(curves.plans), options);
+    } else {
+      try {
+        bezinv::invert_stream(*reader, *writer, std::span<const bezinv::Curve>(curves.curves), options);
+      } catch (const bezinv::PlansError& e) {
+        throw bezinv::InputError("curves[" + std::to_string(e.index) + "]: " + e.what());
+      }
+    }
+  }
+  if (!want_reasons) return py::none();
+  py::list list(rows);
+  for (std::size_t i = 0; i < rows; ++i) list[i] = py::str(reasons[i]);
+  return list;
+}
+
+// The seconds bezinv::invert itself takes on the points of one plane curve (C++ spans, no reader,
+// no records), for holding the Python call's time against (bench/python_speed.py).
+double engine_seconds(const Curves& curves, const py::array_t<double, py::array::c_style>& points, int curve, int threads) {
+  static_assert(sizeof(bezinv::Point) == 2 * sizeof(double));
+  if (curves.plans.empty() || curve < 0 || static_cast<std::size_t>(curve) >= curves.plans.size() ||
+      points.ndim() != 2 || points.shape(1) != 2 || curves.plans[static_cast<std::size_t>(curve)].dimension() != 2)
+    throw std::invalid_argument("engine_seconds: planned curves, a plane curve's index and (N, 2) points");
+  const std::size_t rows = static_cast<std::size_t>(points.shape(0));
+  const std::span<const bezinv::Point> view(reinterpret_cast<const bezinv::Point*>(points.data()), rows);
+  std::vector<bezinv::PointResult> results(rows);
+  bezinv::InvertOptions options;
+  options.threads = threads;
+  py::gil_scoped_release released;
+  const auto start = std::chrono::steady_clock::now();
+  bezinv::invert(curves.plans[static_cast<std::size_t>(curve)], view, results, options);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_bezinv, m) {
+  m.doc() = "bezinv's engine (use the bezinv package, which wraps it)";
+  py::register_exception<bezinv::InputError>(m, "InputError", PyExc_ValueError);
+  py::register_exception<bezinv::CurveError>(m, "CurveError", PyExc_ValueError);
+
+  py::class_<bezinv::Curve>(m, "Curve")
+      .def_readonly("id", &bezinv::Curve::id)
+      .def_property_readonly("kind", [](const bezinv::Curve& c) { return std::string(bezinv::to_string(c.kind)); })
+      .def_property_readonly("degree", &bezinv::Curve::degree)
+      .def_property_readonly("dimension", &bezinv::Curve::dimension)
+      .def("point", [](const bezinv::Curve& c, double t) -> py::tuple {
+        const auto p = c.point3(t);
+        if (c.dimension() == 3) return py::make_tuple(p[0], p[1], p[2]);
+        return py::make_tuple(p[0], p[1]);
+      }, py::arg("t"), "P(t) (the extension for t outside [0, 1])")
+      .def("__repr__", [](const bezinv::Curve& c) {
+        return "<bezinv.Curve id=" + std::string(py::repr(py::str(c.id))) + " kind=" + bezinv::to_string(c.kind) +
+               " degree=" + std::to_string(c.degree()) + " dimension=" + std::to_string(c.dimension()) + ">";
+      });
+
+  py::class_<Curves, std::shared_ptr<Curves>>(m, "Curves")
+      .def("__len__", [](const Curves& c) { return c.curves.size(); })
+      .def("__getitem__", [](const Curves& c, std::ptrdiff_t i) {
+        const auto size = static_cast<std::ptrdiff_t>(c.curves.size());
+        if (i < 0) i += size;
+        if (i < 0 || i >= size) throw py::index_error("curve index out of range");
+        return c.curves[static_cast<std::size_t>(i)];
+      })
+      .def_property_readonly("planned", [](const Curves& c) { return !c.plans.empty(); })
+      .def("degrees", [](const Curves& c) {  // effective degrees (plans), as InversionPlan::degree
+        std::vector<int> degrees;
+        for (const auto& p : c.plans) degrees.push_back(p.degree());
+        return degrees;
+      })
+      .def("diagonals", [](const Curves& c) {
+        std::vector<double> diagonals;
+        for (const auto& p : c.plans) diagonals.push_back(p.diagonal());
+        return diagonals;
+      })
+      // Pickled (for dask workers, multiprocessing) as the curves' coefficients, exactly; the plans
+      // are built again where they are unpickled, as make_plans built them here.
+      .def(py::pickle(
+          [](const Curves& c) {
+            py::list curves;
+            for (const bezinv::Curve& curve : c.curves)
+              curves.append(py::make_tuple(curve.id, static_cast<int>(curve.kind), curve.x_num, curve.x_den, curve.y_num,
+                                           curve.y_den, curve.z_num, curve.z_den));
+            return py::make_tuple(curves, !c.plans.empty());
+          },
+          [](const py::tuple& state) {
+            auto c = std::make_shared<Curves>();
+            for (const py::handle item : state[0].cast<py::list>()) {
+              const auto fields = item.cast<py::tuple>();
+              bezinv::Curve curve;
+              curve.id = fields[0].cast<std::string>();
+              curve.kind = static_cast<bezinv::CurveKind>(fields[1].cast<int>());
+              curve.x_num = fields[2].cast<std::vector<double>>();
+              curve.x_den = fields[3].cast<std::vector<double>>();
+              curve.y_num = fields[4].cast<std::vector<double>>();
+              curve.y_den = fields[5].cast<std::vector<double>>();
+              curve.z_num = fields[6].cast<std::vector<double>>();
+              curve.z_den = fields[7].cast<std::vector<double>>();
+              bezinv::validate(curve);
+              c->curves.push_back(std::move(curve));
+            }
+            if (state[1].cast<bool>()) c->plans = bezinv::make_plans(std::span<const bezinv::Curve>(c->curves));
+            return c;
+          }));
+
+  m.def("read_curves", [](const std::string& path) {
+    auto curves = std::make_shared<Curves>();
+    curves->curves = bezinv::read_curves_json(path);
+    return curves;
+  });
+  m.def("parse_curves", [](const std::string& text, const std::string& name) {
+    auto curves = std::make_shared<Curves>();
+    curves->curves = bezinv::parse_curves_json(text, name);
+    return curves;
+  });
+  m.def("plan", [](const Curves& curves, int threads) {
+    auto planned = std::make_shared<Curves>();
+    planned->curves = curves.curves;
+    {
+      py::gil_scoped_release released;
+      try {
+        planned->plans = bezinv::make_plans(std::span<const bezinv::Curve>(planned->curves), threads);
+      } catch (const bezinv::PlansError& e) {
+        throw bezinv::InputError("curves[" + std::to_string(e.index) + "]: " + e.what());
+      }
+    }
+    return planned;
+  });
+  m.def("invert", &invert);
+  m.def("engine_seconds", &engine_seconds);
+  // bezinv stress, as its --json prints it (the lists as the command's options spell them; their
+  // parsers name a bad item with std::invalid_argument, a ValueError here).
+  m.def("stress", [](const std::string& families, const std::string& kinds, const std::string& degrees,
+                     std::size_t points, int curves, unsigned long long seed, const std::string& paths, double tol,
+                     int threads) {
+    bezinv::cli::StressOptions options;
+    if (!families.empty()) options.families = bezinv::cli::parse_families(families);
+    options.kinds = bezinv::cli::parse_kinds(kinds);
+    std::tie(options.min_degree, options.max_degree) = bezinv::cli::parse_degrees(degrees);
+    options.points = points;
+    options.curves = curves;
+    options.seed = seed;
+    options.paths = bezinv::cli::parse_paths(paths);
+    options.relative_tolerance = tol;
+    options.threads = threads;
+    py::gil_scoped_release released;
+    return bezinv::cli::stress_json(options);
+  });
+  m.def("result_descr", [] { return std::string(bezinv::result_descr()); });
+  m.def("status_names", [] {
+    std::vector<std::string> names;
+    for (int s = 0; s <= static_cast<int>(bezinv::Status::failed); ++s)
+      names.emplace_back(bezinv::to_string(static_cast<bezinv::Status>(s)));
+    return names;
+  });
+  m.def("path_names", [] {
+    std::vector<std::string> names;
+    for (int p = 0; p <= static_cast<int>(bezinv::Path::projection); ++p)
+      names.emplace_back(bezinv::to_string(static_cast<bezinv::Path>(p)));
+    return names;
+  });
+  m.def("kernel", [] { return std::string(bezinv::active_kernel_name()); });
+  m.attr("default_relative_tolerance") = bezinv::kDefaultRelativeTolerance;
+}
