@@ -128,7 +128,7 @@ def _index_array(curve_index, rows):
 
 
 def invert(plans, points, curve=None, curve_index=None, tol=DEFAULT_TOLERANCE, refine=True, fast_path=True,
-           algebraic="bezout", off_curve="nearest", threads=0, reasons=False):
+           algebraic="bezout", off_curve="nearest", threads=0, reasons=False, out=None):
     """The parameter of every point, as `bezinv invert` gives it.
 
     plans       plan(curves), or curves as load_curves takes them (plans are then built for the
@@ -144,6 +144,8 @@ def invert(plans, points, curve=None, curve_index=None, tol=DEFAULT_TOLERANCE, r
     off_curve   "nearest" or "projection" (--off-curve)
     threads     0: all cores
     reasons     True: also return a list of each row's reason (why invalid_input or failed)
+    out         an array of RESULT_DTYPE, shape (N,), C-contiguous, to write the results into
+                (reused across calls, it saves allocating and first touching the memory)
 
     Returns a structured array of RESULT_DTYPE (OUT.npy's fields: t, residual, t2, sigma_min,
     sigma_next, status, path), one row per point in order; with reasons, (results, reasons).
@@ -175,7 +177,12 @@ def invert(plans, points, curve=None, curve_index=None, tol=DEFAULT_TOLERANCE, r
         raise ValueError("algebraic: %r is not one of %s" % (algebraic, ", ".join(_ALGEBRAIC)))
     if off_curve not in _OFF_CURVE:
         raise ValueError("off_curve: %r is not one of %s" % (off_curve, ", ".join(_OFF_CURVE)))
-    out = np.empty(rows, dtype=RESULT_DTYPE)
+    if out is None:
+        out = np.empty(rows, dtype=RESULT_DTYPE)
+    elif not isinstance(out, np.ndarray) or out.dtype != RESULT_DTYPE or out.shape != (rows,):
+        raise ValueError("out: expected an array of bezinv.RESULT_DTYPE and shape (%d,)" % rows)
+    elif not (out.flags["C_CONTIGUOUS"] and out.flags["WRITEABLE"]):
+        raise ValueError("out: must be C-contiguous and writeable")
     why = _bezinv.invert(curves, array, array.shape[1], selection, index, out, float(tol), bool(refine),
                          bool(fast_path), algebraic, off_curve, _check_threads(threads), bool(reasons))
     return (out, why) if reasons else out

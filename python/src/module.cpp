@@ -3,7 +3,9 @@
 // numpy array of OUT.npy's records, and the engine runs with the GIL released, through the same
 // reader -> invert_stream -> writer path as `bezinv invert`, so the answers are the command's,
 // byte for byte.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -44,6 +46,41 @@ bezinv::InvertOptions options_from(double tol, bool refine, bool fast_path, cons
   return options;
 }
 
+// The index of the curve `selection` names (an id, else a 0-based index, as --curve), or -1.
+int curve_named(const std::vector<bezinv::Curve>& curves, const std::string& selection) {
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    if (curves[i].id == selection) return static_cast<int>(i);
+  if (selection.empty() || selection.size() > 9 || selection.find_first_not_of("0123456789") != std::string::npos) return -1;
+  const std::size_t index = std::stoul(selection);
+  return index < curves.size() ? static_cast<int>(index) : -1;
+}
+
+// The common case, read in place: planned curves, one plane curve for every row, every coordinate
+// finite. No row then needs the reader's checks, and the engine reads the numpy memory as its
+// Points a chunk at a time, into a chunk of results packed as the writer packs them. The answers
+// are the general path's (the engine's do not depend on how the rows are handed to it). False
+// (nothing written) when the case is not this one.
+bool invert_in_place(const Curves& curves, const bezinv::PointArray& array, std::span<char> records,
+                     const bezinv::InvertOptions& options) {
+  static_assert(sizeof(bezinv::Point) == 2 * sizeof(double), "a row of (N, 2) float64 is a Point");
+  if (curves.plans.empty() || array.width != 2 || array.curve.empty()) return false;
+  const int curve = curve_named(curves.curves, array.curve);
+  if (curve < 0 || curves.plans[static_cast<std::size_t>(curve)].dimension() != 2) return false;
+  for (const double v : array.coordinates)
+    if (!std::isfinite(v)) return false;
+  const std::size_t rows = array.coordinates.size() / 2;
+  const auto* points = reinterpret_cast<const bezinv::Point*>(array.coordinates.data());
+  const auto writer = bezinv::open_results(records);
+  std::vector<bezinv::PointResult> results(std::min(rows, bezinv::kDefaultChunkPoints));
+  for (std::size_t begin = 0; begin < rows; begin += results.size()) {
+    const std::size_t count = std::min(results.size(), rows - begin);
+    const std::span<bezinv::PointResult> chunk = std::span(results).first(count);
+    bezinv::invert(curves.plans[static_cast<std::size_t>(curve)], std::span(points + begin, count), chunk, options);
+    writer->write(chunk);
+  }
+  return true;
+}
+
 // Inverts `points` (C-contiguous float64, rows x width) into `out` (OUT.npy records, rows of
 // them); `reasons` (when asked for) gets each row's reason. The caller checked the shapes.
 py::object invert(const Curves& curves, const py::array& points, std::size_t width, const std::string& curve,
@@ -66,12 +103,13 @@ py::object invert(const Curves& curves, const py::array& points, std::size_t wid
   const bezinv::InvertOptions options = options_from(tol, refine, fast_path, algebraic, off_curve, threads);
   {
     py::gil_scoped_release released;
-    const auto reader = bezinv::open_points(array, curves.curves);
-    const auto writer = bezinv::open_results(std::span(static_cast<char*>(out.mutable_data()), static_cast<std::size_t>(out.nbytes())),
-                                             std::span(reasons));
-    if (!curves.plans.empty()) {
+    const std::span<char> records(static_cast<char*>(out.mutable_data()), static_cast<std::size_t>(out.nbytes()));
+    const auto reader = bezinv::open_points(array, curves.curves);  // checks the array as a whole first
+    const auto writer = bezinv::open_results(records, std::span(reasons));
+    const bool answered_in_place = !want_reasons && invert_in_place(curves, array, records, options);
+    if (!answered_in_place && !curves.plans.empty()) {
       bezinv::invert_stream(*reader, *writer, std::span<const bezinv::InversionPlan>(curves.plans), options);
-    } else {
+    } else if (!answered_in_place) {
       try {
         bezinv::invert_stream(*reader, *writer, std::span<const bezinv::Curve>(curves.curves), options);
       } catch (const bezinv::PlansError& e) {
@@ -94,9 +132,11 @@ double engine_seconds(const Curves& curves, const py::array_t<double, py::array:
     throw std::invalid_argument("engine_seconds: planned curves, a plane curve's index and (N, 2) points");
   const std::size_t rows = static_cast<std::size_t>(points.shape(0));
   const std::span<const bezinv::Point> view(reinterpret_cast<const bezinv::Point*>(points.data()), rows);
-  std::vector<bezinv::PointResult> results(rows);
   bezinv::InvertOptions options;
   options.threads = threads;
+  // Allocated and touched before the clock starts, as a caller who reuses its results does (the
+  // Python call is timed with out= reused, bench/python_speed.py).
+  std::vector<bezinv::PointResult> results(rows);
   py::gil_scoped_release released;
   const auto start = std::chrono::steady_clock::now();
   bezinv::invert(curves.plans[static_cast<std::size_t>(curve)], view, results, options);

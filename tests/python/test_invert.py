@@ -61,10 +61,19 @@ def test_the_answers_are_the_commands_byte_for_byte(tmp_path, cli):
         assert got.tobytes() == expected.tobytes(), flags
         # The curves unplanned (plans built for the curves the points name) answer the same.
         assert bezinv.invert(curves_path, points, curve_index=index, **options).tobytes() == expected.tobytes()
-    # One curve for every point, by id.
+    # One curve for every point, by id: with bad rows (the reader's checks), and every row finite
+    # (the module then hands the array to the engine in place).
     run_cli(cli, "invert", "--curves", curves_path, "--points", tmp_path / "points.npy", "--curve", "arc",
             "--out", tmp_path / "arc.npy")
     assert bezinv.invert(plans, points, curve="arc").tobytes() == np.load(tmp_path / "arc.npy").tobytes()
+    finite = np.ascontiguousarray(points[np.isfinite(points).all(axis=1)])
+    np.save(tmp_path / "finite.npy", finite)
+    for flags, options in zip(variants, keywords):
+        run_cli(cli, "invert", "--curves", curves_path, "--points", tmp_path / "finite.npy", "--curve", "1",
+                "--out", tmp_path / "finite-out.npy", *flags)
+        expected = np.load(tmp_path / "finite-out.npy")
+        assert bezinv.invert(plans, finite, curve=1, **options).tobytes() == expected.tobytes(), flags
+        assert bezinv.invert(plans, finite, curve="arc", reasons=True, **options)[0].tobytes() == expected.tobytes()
 
 
 def test_space_points_match_the_command(tmp_path, cli):
@@ -86,6 +95,9 @@ def test_a_contiguous_float64_array_is_read_in_place_and_others_are_converted():
     plans = bezinv.plan([CUBIC])
     t = np.linspace(0, 1, 11)
     exact = bezier_points(CUBIC["points"], t)
+    reused = np.zeros(11, dtype=bezinv.RESULT_DTYPE)
+    assert bezinv.invert(plans, exact, out=reused) is reused
+    assert reused.tobytes() == bezinv.invert(plans, exact).tobytes()
     as_list = bezinv.invert(plans, exact.tolist())
     as_fortran = bezinv.invert(plans, np.asfortranarray(exact))
     assert as_list.tobytes() == as_fortran.tobytes() == bezinv.invert(plans, exact).tobytes()
@@ -131,6 +143,10 @@ def test_errors_name_the_argument_or_the_field():
         bezinv.invert(plans, np.zeros((2, 2)), curve=0, algebraic="svd")
     with pytest.raises(ValueError, match="off_curve"):
         bezinv.invert(plans, np.zeros((2, 2)), curve=0, off_curve="far")
+    with pytest.raises(ValueError, match="out"):
+        bezinv.invert(plans, np.zeros((2, 2)), curve=0, out=np.empty(3, dtype=bezinv.RESULT_DTYPE))
+    with pytest.raises(ValueError, match="out"):
+        bezinv.invert(plans, np.zeros((2, 2)), curve=0, out=np.empty(2))
     with pytest.raises(ValueError, match="threads"):
         bezinv.invert(plans, np.zeros((2, 2)), curve=0, threads=-1)
 
