@@ -71,9 +71,11 @@ StreamSummary stream(PointReader& reader, ResultWriter& writer, std::span<const 
     prepare(std::span<const int>(curve_of).first(count));
     // Inverted in slices so the progress callback hears more often than once a chunk (a chunk of
     // a million points can take seconds); a slice is still thousands of batches for the threads.
+    // Without a callback, the chunk in one call: each call ends when its slowest thread does.
     ReadProgress progress = reader.progress();
-    for (std::size_t begin = 0; begin < count; begin += kProgressSlice) {
-      const std::size_t size = std::min(kProgressSlice, count - begin);
+    const std::size_t slice = on_progress ? kProgressSlice : count;
+    for (std::size_t begin = 0; begin < count; begin += slice) {
+      const std::size_t size = std::min(slice, count - begin);
       invert(plans, std::span<const int>(curve_of).subspan(begin, size),
              std::span<const Point>(points).subspan(begin, size), std::span<const double>(z).subspan(begin, size),
              std::span(results).subspan(begin, size), options);
