@@ -47,13 +47,18 @@ Nurbs wavy_cubic(std::vector<double> knots) {
   return {3, std::move(knots), {{0, 0, 0}, {1, 2, 0}, {2, -1, 0}, {3, 2, 0}, {4, 0, 0}, {5, 1, 0}, {6, -1, 0}}, {}};
 }
 
-// Every knot of the domain, the ends, and points between them.
+// Every knot of the domain, the ends, points between them, and points just beside the knots
+// (within the tolerance of the span ending there too: one point, not two).
 std::vector<double> parameters_of(const Nurbs& n, int between = 7) {
   std::vector<double> u;
   const double a = n.domain_start(), b = n.domain_end();
   for (int i = 0; i <= 8 * between; ++i) u.push_back(a + (b - a) * i / (8 * between));
   for (double k : n.knots)
-    if (k >= a && k <= b) u.push_back(k);
+    if (k >= a && k <= b) {
+      u.push_back(k);
+      if (k - 1e-9 * (b - a) > a) u.push_back(k - 1e-9 * (b - a));
+      if (k + 1e-9 * (b - a) < b) u.push_back(k + 1e-9 * (b - a));
+    }
   return u;
 }
 

@@ -119,11 +119,12 @@ PointResult whole_curve_answer(const PiecewiseData& curve, const std::array<doub
       return r;
     }
     PointResult r = answer_from(*best, Status::ok);
-    // A closed curve's end is its start: a point there (the curve stays within the tolerance from
-    // it to the end) is one point, reported at the start of the domain.
+    // A closed curve's end is its start: a point there is one point, reported at the start of the
+    // domain. "There": the start is as near as the best candidate, to the input's resolution (a
+    // point just before the end keeps its own parameter).
     if (closed && best->span == last && (best->s == 1.0 || !leaves(curve, point, last, best->s, last, 1.0, tolerance))) {
       const double residual = curve.distance(0, 0.0, point);
-      if (residual <= tolerance) r.t = curve.domain[0], r.residual = residual;
+      if (residual <= std::min(tolerance, best->residual + curve.resolution)) r.t = curve.domain[0], r.residual = residual;
     }
     return r;
   }
