@@ -25,20 +25,22 @@ void invert_piecewise(const PlanData& plan, std::span<const Point> points, std::
   }
   // Blocks of points, every span's answers to a block kept until the block is combined; the
   // blocks in parallel, each on one thread, so the answers do not depend on the thread count.
-  constexpr std::size_t kBlock = 1024;
-  const std::size_t count = points.size(), blocks = (count + kBlock - 1) / kBlock;
+  constexpr std::size_t kMaxBlock = 1024;
+  const std::size_t count = points.size(), block_size = std::min(kMaxBlock, count);  // few points: buffers no larger
+  if (count == 0) return;
+  const std::size_t blocks = (count + block_size - 1) / block_size;
   std::mutex clock_mutex;
   for_each_range(
       blocks, options,
       [&](std::size_t first_block, std::size_t last_block) {
-        std::vector<PointResult> answers(spans * kBlock);  // span k's answer to point i at k * kBlock + i
+        std::vector<PointResult> answers(spans * block_size);  // span k's answer to point i at k * block_size + i
         std::vector<PointResult> of_point(spans);
         StageSeconds local;
         for (std::size_t block = first_block; block < last_block; ++block) {
-          const std::size_t begin = block * kBlock, size = std::min(count, begin + kBlock) - begin;
+          const std::size_t begin = block * block_size, size = std::min(count, begin + block_size) - begin;
           for (std::size_t k = 0; k < spans; ++k) {
             const PlanData& span = plan_data(curve.spans[k].plan);
-            const std::span<PointResult> out(answers.data() + k * kBlock, size);
+            const std::span<PointResult> out(answers.data() + k * block_size, size);
             if (span.space)
               invert_space_curve(span, points.subspan(begin, size), z.subspan(begin, size), out, span_options[k],
                                  stages ? &local : nullptr);
@@ -46,7 +48,7 @@ void invert_piecewise(const PlanData& plan, std::span<const Point> points, std::
               invert_curve(span, points.subspan(begin, size), out, span_options[k], stages ? &local : nullptr);
           }
           for (std::size_t i = 0; i < size; ++i) {
-            for (std::size_t k = 0; k < spans; ++k) of_point[k] = answers[k * kBlock + i];
+            for (std::size_t k = 0; k < spans; ++k) of_point[k] = answers[k * block_size + i];
             const Point& p = points[begin + i];
             results[begin + i] =
                 whole_curve_answer(curve, {p.x, p.y, curve.dimension == 3 ? z[begin + i] : 0.0}, of_point, options);
