@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,9 @@ Curve random_curve(CurveKind kind, int degree, std::mt19937_64& rng, ControlPoly
       c.x_den = positive_coefficients(degree, rng);
       c.y_den = positive_coefficients(degree, rng);
       break;
+    case CurveKind::nurbs:
+    case CurveKind::composite:  // made of Bezier curves: the generators make those
+      throw std::invalid_argument(std::string("random_curve: no random curve of kind ") + bezinv::to_string(kind));
   }
   for (int i = 0; i <= degree; ++i) {
     c.x_num[i] = points[i][0] * c.x_den[i];

@@ -1,12 +1,16 @@
 #include "bezinv/curve.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
 #include <utility>
 
 #include "bezinv/bernstein.hpp"
+#include "bezinv/nurbs.hpp"
 #include "bezinv/tolerances.hpp"
+#include "piecewise/homogeneous_spline.hpp"
+#include "piecewise/piecewise_validation.hpp"
 #include "quote.hpp"
 
 namespace bezinv {
@@ -16,18 +20,47 @@ const char* to_string(CurveKind kind) {
     case CurveKind::bezier: return "bezier";
     case CurveKind::rational_bezier: return "rational_bezier";
     case CurveKind::rational: return "rational";
+    case CurveKind::nurbs: return "nurbs";
+    case CurveKind::composite: return "composite";
   }
   return "?";
 }
 
+int Curve::degree() const {
+  if (kind == CurveKind::nurbs) return spline_degree;
+  if (kind == CurveKind::composite) {
+    int highest = 0;
+    for (const Curve& c : curves) highest = std::max(highest, c.degree());
+    return highest;
+  }
+  return static_cast<int>(x_num.size()) - 1;
+}
+
 std::array<double, 2> Curve::point(double t) const {
+  if (piecewise(*this)) {
+    const auto p = point3(t);
+    return {p[0], p[1]};
+  }
   return {bernstein_value(x_num, t) / bernstein_value(x_den, t),
           bernstein_value(y_num, t) / bernstein_value(y_den, t)};
 }
 
 std::array<double, 3> Curve::point3(double t) const {
-  const auto p = point(t);
-  return {p[0], p[1], dimension() == 3 ? bernstein_value(z_num, t) / bernstein_value(z_den, t) : 0.0};
+  if (kind == CurveKind::nurbs) {
+    const auto q = detail::de_boor(detail::homogeneous_spline(*this), t);
+    return {q[0] / q[3], q[1] / q[3], dimension() == 3 ? q[2] / q[3] : 0.0};
+  }
+  if (kind == CurveKind::composite) {
+    // Curve k covers [k, k + 1] (a nurbs curve's domain normalized to it); beyond the ends, the end
+    // curves' extensions.
+    const double last = static_cast<double>(curves.size() - 1);
+    const double k = std::clamp(std::floor(t), 0.0, last);
+    const Curve& part = curves[static_cast<std::size_t>(k)];
+    const auto [a, b] = parameter_domain(part);
+    return part.point3(a + (t - k) * (b - a));
+  }
+  return {bernstein_value(x_num, t) / bernstein_value(x_den, t), bernstein_value(y_num, t) / bernstein_value(y_den, t),
+          dimension() == 3 ? bernstein_value(z_num, t) / bernstein_value(z_den, t) : 0.0};
 }
 
 Curve Curve::space_bezier(std::string id, const std::vector<std::array<double, 3>>& points) {
@@ -55,6 +88,47 @@ Curve Curve::space_rational(std::string id, std::vector<double> x_num, std::vect
   Curve c = rational(std::move(id), std::move(x_num), std::move(x_den), std::move(y_num), std::move(y_den));
   c.z_num = std::move(z_num);
   c.z_den = std::move(z_den);
+  return c;
+}
+
+Curve Curve::nurbs(std::string id, int degree, std::vector<double> knots,
+                   const std::vector<std::array<double, 2>>& points, const std::vector<double>& weights) {
+  std::vector<std::array<double, 3>> xyz;
+  for (const auto& p : points) xyz.push_back({p[0], p[1], 0.0});
+  Curve c = space_nurbs(std::move(id), degree, std::move(knots), xyz, weights);
+  c.z_num.clear();
+  c.z_den.clear();
+  return c;
+}
+
+Curve Curve::space_nurbs(std::string id, int degree, std::vector<double> knots,
+                         const std::vector<std::array<double, 3>>& points, const std::vector<double>& weights) {
+  Curve c;
+  c.id = std::move(id);
+  c.kind = CurveKind::nurbs;
+  c.spline_degree = degree;
+  c.knots = std::move(knots);
+  if (!weights.empty() && weights.size() != points.size())
+    throw CurveError("curve " + detail::quoted_excerpt(c.id) + ": weights: " + std::to_string(weights.size()) +
+                     " weights for " + std::to_string(points.size()) + " points");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    // Homogeneous form, as rational_bezier's: the numerators carry w_i P_i.
+    const double w = weights.empty() ? 1.0 : weights[i];
+    c.x_num.push_back(w * points[i][0]);
+    c.y_num.push_back(w * points[i][1]);
+    c.z_num.push_back(w * points[i][2]);
+    c.x_den.push_back(w);
+  }
+  c.y_den = c.x_den;
+  c.z_den = c.x_den;
+  return c;
+}
+
+Curve Curve::composite(std::string id, std::vector<Curve> curves) {
+  Curve c;
+  c.id = std::move(id);
+  c.kind = CurveKind::composite;
+  c.curves = std::move(curves);
   return c;
 }
 
@@ -146,6 +220,8 @@ bool has_root_on_unit_interval(const std::vector<double>& coefficients) {
 void validate(const Curve& curve) {
   // The id may come from a file: escaped and cut short like any file content in a message.
   const std::string who = "curve " + detail::quoted_excerpt(curve.id) + ": ";
+  if (curve.kind == CurveKind::nurbs) return detail::validate_nurbs(curve, who);
+  if (curve.kind == CurveKind::composite) return detail::validate_composite(curve, who);
   const std::size_t size = curve.x_num.size();
   if (size < 2)
     throw CurveError(who + "degree must be at least 1 (" + std::to_string(size) + " coefficients given)");

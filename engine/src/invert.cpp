@@ -10,6 +10,7 @@
 #include "bezinv/profile.hpp"
 #include "pipeline/batch.hpp"
 #include "pipeline/schedule.hpp"
+#include "piecewise/invert_piecewise.hpp"
 #include "plan_data.hpp"
 #include "quote.hpp"
 #include "space/invert_space.hpp"
@@ -69,8 +70,12 @@ void require_dimension(const InversionPlan& plan, int dimension) {
 PointResult invert_point(const InversionPlan& plan, Point point, const InvertOptions& options) {
   require_dimension(plan, 2);
   PointResult r;
-  const detail::QueueScope scope;
   const detail::PlanData& data = detail::plan_data(plan);
+  if (data.piecewise) {
+    detail::invert_piecewise(data, std::span<const Point>(&point, 1), {}, std::span<PointResult>(&r, 1), options, nullptr);
+    return r;
+  }
+  const detail::QueueScope scope;
   detail::invert_batch(data, &point, &r, 1, options, nullptr);
   detail::flush_queues(data, options, nullptr);
   return r;
@@ -79,12 +84,16 @@ PointResult invert_point(const InversionPlan& plan, Point point, const InvertOpt
 void invert(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
             const InvertOptions& options) {
   require_dimension(plan, 2);
+  if (detail::plan_data(plan).piecewise)
+    return detail::invert_piecewise(detail::plan_data(plan), points, {}, results, options, nullptr);
   detail::invert_curve(detail::plan_data(plan), points, results, options, nullptr);
 }
 
 void invert(const InversionPlan& plan, std::span<const Point> points, std::span<PointResult> results,
             const InvertOptions& options, StageSeconds& stages) {
   require_dimension(plan, 2);
+  if (detail::plan_data(plan).piecewise)
+    return detail::invert_piecewise(detail::plan_data(plan), points, {}, results, options, &stages);
   detail::invert_curve(detail::plan_data(plan), points, results, options, &stages);
 }
 
@@ -109,6 +118,8 @@ void invert_space(const InversionPlan& plan, std::span<const Point3> points, std
   std::vector<Point> xy(points.size());
   std::vector<double> z(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) xy[i] = {points[i].x, points[i].y}, z[i] = points[i].z;
+  if (detail::plan_data(plan).piecewise)
+    return detail::invert_piecewise(detail::plan_data(plan), xy, z, results, options, stages);
   detail::invert_space_curve(detail::plan_data(plan), xy, z, results, options, stages);
 }
 

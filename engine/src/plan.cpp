@@ -24,6 +24,8 @@
 #include "isolation.hpp"
 #include "stationary_points.hpp"
 
+#include "bezinv/nurbs.hpp"
+#include "piecewise/piecewise_plan.hpp"
 #include "refine.hpp"
 #include "space/space_curve.hpp"
 
@@ -263,12 +265,33 @@ const Curve& InversionPlan::curve() const { return data_->space ? data_->space->
 int InversionPlan::input_degree() const { return data_->input_degree; }
 int InversionPlan::degree() const { return data_->degree; }
 double InversionPlan::diagonal() const { return data_->space ? data_->space->diagonal : data_->diagonal; }
-int InversionPlan::dimension() const { return data_->space ? 3 : 2; }
+int InversionPlan::dimension() const {
+  if (data_->piecewise) return data_->piecewise->dimension;
+  return data_->space ? 3 : 2;
+}
 bool InversionPlan::usable() const { return data_->usable; }
 const char* InversionPlan::reason() const { return data_->reason; }
-void InversionPlan::prepare_off_curve() const { (void)detail::off_curve_data(*data_); }
+void InversionPlan::prepare_off_curve() const {
+  if (data_->piecewise) {
+    for (const detail::PiecewiseSpan& span : data_->piecewise->spans) span.plan.prepare_off_curve();
+    return;
+  }
+  (void)detail::off_curve_data(*data_);
+}
 
 InversionPlan make_plan(const Curve& curve) {
+  if (piecewise(curve)) {
+    // The plans of its spans (piecewise/piecewise_plan.hpp); this plan only holds them.
+    auto spans = std::make_shared<const detail::PiecewiseData>(detail::make_piecewise_data(curve));
+    detail::PlanData data;
+    data.curve = curve;
+    data.input_degree = data.degree = curve.degree();
+    data.diagonal = spans->diagonal;
+    data.usable = std::any_of(spans->spans.begin(), spans->spans.end(), [](const auto& s) { return s.plan.usable(); });
+    if (!data.usable) data.reason = spans->spans.front().plan.reason();
+    data.piecewise = std::move(spans);
+    return InversionPlan(std::make_shared<const detail::PlanData>(std::move(data)));
+  }
   if (curve.dimension() == 3) {
     // A space curve: the plan of its projection, with the space data beside it (space_curve.hpp).
     validate(curve);

@@ -24,6 +24,7 @@ namespace bezinv::detail {
 // pieces of polynomials of degree up to 6n), so a plan makes it on first use (off_curve_data), and plans
 // whose points are all on the curve never pay for it.
 struct SpaceData;
+struct PiecewiseData;
 
 struct OffCurveData {
   // The certified nearest-point search (engine/src/stationary_points.hpp): on each of
@@ -143,6 +144,9 @@ struct PlanData {
   // plane curve, and `space` the curve as given with what checks the answers in space. Null for a
   // plane curve.
   std::shared_ptr<const SpaceData> space;
+  // A NURBS or composite curve (piecewise/piecewise_plan.hpp): the plans of its spans, `curve` the
+  // curve as given; nothing else here is set but the diagonal, the degree and usable. Null otherwise.
+  std::shared_ptr<const PiecewiseData> piecewise;
 
   // Power-basis leading coefficients of the four polynomials and their size bounds, for
   // detecting a degree drop of p and q at a given point (paper Sect. 4).

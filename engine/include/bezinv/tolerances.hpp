@@ -163,4 +163,10 @@ inline constexpr int kFormulaPathMaxDegree = 20;
 // it away from zero after this many halvings (a piece 1e-12 wide): a double root, or within rounding.
 inline constexpr int kDenominatorRootHalvings = 40;
 
+// A composite curve's curves must meet end to start within this fraction of the diagonal of its
+// control points' bounding box: a tenth of the default on-curve tolerance, so a gap the check lets
+// through is invisible to the default inversion, yet ends computed in floating point (an
+// unclamped NURBS, a rational curve's ends) or printed to 8 digits pass.
+inline constexpr double kCompositeJointGap = 1e-7;
+
 }  // namespace bezinv

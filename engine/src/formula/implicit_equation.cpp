@@ -33,6 +33,9 @@ ImplicitEquation implicit_equation(const InversionPlan& plan) {
   if (plan.dimension() != 2)
     throw FormulaError("curve " + detail::quoted_excerpt(plan.curve().id) + " is a space curve: no implicit equation");
   const detail::PlanData& data = detail::plan_data(plan);
+  if (data.piecewise)
+    throw FormulaError("curve " + detail::quoted_excerpt(plan.curve().id) + " is a " + to_string(plan.curve().kind) +
+                       " curve: no implicit equation (one per span)");
   const detail::FrameCurve framed = detail::formula_curve(data);
   const detail::HomogeneousCurve& curve = framed.curve;
   const int n = curve.degree();

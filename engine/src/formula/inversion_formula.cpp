@@ -45,6 +45,9 @@ const detail::PlanData& plane_plan_data(const InversionPlan& plan) {
   if (plan.dimension() != 2)
     throw FormulaError("curve " + detail::quoted_excerpt(plan.curve().id) +
                        " is a space curve: inversion formulae, implicit equations and singular points are for plane curves");
+  if (detail::plan_data(plan).piecewise)
+    throw FormulaError("curve " + detail::quoted_excerpt(plan.curve().id) + " is a " + to_string(plan.curve().kind) +
+                       " curve: inversion formulae, implicit equations and singular points are for one rational Bezier curve");
   return detail::plan_data(plan);
 }
 

@@ -12,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "piecewise/invert_piecewise.hpp"
 #include "pipeline/batch.hpp"
 #include "pipeline/workspace.hpp"
 #include "space/invert_space.hpp"
@@ -100,7 +101,10 @@ void invert_curves(std::span<const InversionPlan> plans, std::span<const int> cu
   auto invert_run = [&](const Run& run, const InvertOptions& run_options) {
     const PlanData& plan = plan_data(plans[curve_of[run.begin]]);
     const std::size_t length = run.end - run.begin;
-    if (plan.space)
+    if (plan.piecewise)
+      invert_piecewise(plan, points.subspan(run.begin, length), z.empty() ? z : z.subspan(run.begin, length),
+                       results.subspan(run.begin, length), run_options, nullptr);
+    else if (plan.space)
       invert_space_curve(plan, points.subspan(run.begin, length), z.subspan(run.begin, length),
                          results.subspan(run.begin, length), run_options, nullptr);
     else

@@ -1,0 +1,53 @@
+#include "piecewise/control_box.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bezinv/nurbs.hpp"
+
+namespace bezinv::detail {
+namespace {
+
+void include(ControlBox& box, const std::array<double, 3>& p) {
+  for (int k = 0; k < 3; ++k) {
+    box.lo[k] = std::min(box.lo[k], p[k]);
+    box.hi[k] = std::max(box.hi[k], p[k]);
+  }
+}
+
+}  // namespace
+
+double ControlBox::diagonal() const {
+  return 2 * std::hypot(0.5 * hi[0] - 0.5 * lo[0], 0.5 * hi[1] - 0.5 * lo[1], 0.5 * hi[2] - 0.5 * lo[2]);
+}
+
+double ControlBox::magnitude() const {
+  double m = 0;
+  for (int k = 0; k < 3; ++k) m = std::max({m, std::abs(lo[k]), std::abs(hi[k])});
+  return m;
+}
+
+ControlBox control_box(const Curve& curve) {
+  constexpr double inf = HUGE_VAL;
+  ControlBox box{{inf, inf, inf}, {-inf, -inf, -inf}};
+  if (curve.kind == CurveKind::composite) {
+    for (const Curve& part : curve.curves) {
+      const ControlBox b = control_box(part);
+      include(box, b.lo);
+      include(box, b.hi);
+    }
+    return box;
+  }
+  const bool space = curve.dimension() == 3;
+  for (std::size_t i = 0; i < curve.x_num.size(); ++i)
+    if (curve.x_den[i] != 0.0 && curve.y_den[i] != 0.0 && (!space || curve.z_den[i] != 0.0))
+      include(box, {curve.x_num[i] / curve.x_den[i], curve.y_num[i] / curve.y_den[i],
+                    space ? curve.z_num[i] / curve.z_den[i] : 0.0});
+  if (curve.kind != CurveKind::nurbs) {
+    include(box, curve.point3(0.0));
+    include(box, curve.point3(1.0));
+  }
+  return box;
+}
+
+}  // namespace bezinv::detail
