@@ -46,6 +46,31 @@ bezinv::InvertOptions options_from(double tol, bool refine, bool fast_path, cons
   return options;
 }
 
+// A curve as pickled: every field, exactly (a composite's parts within it).
+py::tuple curve_state(const bezinv::Curve& curve) {
+  py::list parts;
+  for (const bezinv::Curve& part : curve.curves) parts.append(curve_state(part));
+  return py::make_tuple(curve.id, static_cast<int>(curve.kind), curve.x_num, curve.x_den, curve.y_num, curve.y_den,
+                        curve.z_num, curve.z_den, curve.spline_degree, curve.knots, parts);
+}
+
+bezinv::Curve curve_from_state(const py::tuple& fields) {
+  if (fields.size() != 11) throw std::invalid_argument("bezinv.Curves: not a pickled curve");
+  bezinv::Curve curve;
+  curve.id = fields[0].cast<std::string>();
+  curve.kind = static_cast<bezinv::CurveKind>(fields[1].cast<int>());
+  curve.x_num = fields[2].cast<std::vector<double>>();
+  curve.x_den = fields[3].cast<std::vector<double>>();
+  curve.y_num = fields[4].cast<std::vector<double>>();
+  curve.y_den = fields[5].cast<std::vector<double>>();
+  curve.z_num = fields[6].cast<std::vector<double>>();
+  curve.z_den = fields[7].cast<std::vector<double>>();
+  curve.spline_degree = fields[8].cast<int>();
+  curve.knots = fields[9].cast<std::vector<double>>();
+  for (const py::handle part : fields[10].cast<py::list>()) curve.curves.push_back(curve_from_state(part.cast<py::tuple>()));
+  return curve;
+}
+
 // The index of the curve `selection` names (an id, else a 0-based index, as --curve), or -1.
 int curve_named(const std::vector<bezinv::Curve>& curves, const std::string& selection) {
   for (std::size_t i = 0; i < curves.size(); ++i)
@@ -155,11 +180,13 @@ PYBIND11_MODULE(_bezinv, m) {
       .def_property_readonly("kind", [](const bezinv::Curve& c) { return std::string(bezinv::to_string(c.kind)); })
       .def_property_readonly("degree", &bezinv::Curve::degree)
       .def_property_readonly("dimension", &bezinv::Curve::dimension)
+      .def_property_readonly("knots", [](const bezinv::Curve& c) { return c.knots; })  // nurbs
+      .def_property_readonly("parts", [](const bezinv::Curve& c) { return c.curves; })  // composite
       .def("point", [](const bezinv::Curve& c, double t) -> py::tuple {
         const auto p = c.point3(t);
         if (c.dimension() == 3) return py::make_tuple(p[0], p[1], p[2]);
         return py::make_tuple(p[0], p[1]);
-      }, py::arg("t"), "P(t) (the extension for t outside [0, 1])")
+      }, py::arg("t"), "P(t) in the curve's own parameter (nurbs: the knots'; composite: segment + local t)")
       .def("__repr__", [](const bezinv::Curve& c) {
         return "<bezinv.Curve id=" + std::string(py::repr(py::str(c.id))) + " kind=" + bezinv::to_string(c.kind) +
                " degree=" + std::to_string(c.degree()) + " dimension=" + std::to_string(c.dimension()) + ">";
@@ -189,24 +216,13 @@ PYBIND11_MODULE(_bezinv, m) {
       .def(py::pickle(
           [](const Curves& c) {
             py::list curves;
-            for (const bezinv::Curve& curve : c.curves)
-              curves.append(py::make_tuple(curve.id, static_cast<int>(curve.kind), curve.x_num, curve.x_den, curve.y_num,
-                                           curve.y_den, curve.z_num, curve.z_den));
+            for (const bezinv::Curve& curve : c.curves) curves.append(curve_state(curve));
             return py::make_tuple(curves, !c.plans.empty());
           },
           [](const py::tuple& state) {
             auto c = std::make_shared<Curves>();
             for (const py::handle item : state[0].cast<py::list>()) {
-              const auto fields = item.cast<py::tuple>();
-              bezinv::Curve curve;
-              curve.id = fields[0].cast<std::string>();
-              curve.kind = static_cast<bezinv::CurveKind>(fields[1].cast<int>());
-              curve.x_num = fields[2].cast<std::vector<double>>();
-              curve.x_den = fields[3].cast<std::vector<double>>();
-              curve.y_num = fields[4].cast<std::vector<double>>();
-              curve.y_den = fields[5].cast<std::vector<double>>();
-              curve.z_num = fields[6].cast<std::vector<double>>();
-              curve.z_den = fields[7].cast<std::vector<double>>();
+              bezinv::Curve curve = curve_from_state(item.cast<py::tuple>());
               bezinv::validate(curve);
               c->curves.push_back(std::move(curve));
             }

@@ -200,3 +200,36 @@ def test_stress_reports_as_the_command_does(cli):
                (b["family"], b["degree"], b["rows"], b["confusion"], b["abs_dt"])
     with pytest.raises(ValueError, match="nosuchfamily"):
         bezinv.stress(families=["nosuchfamily"])
+
+
+def test_nurbs_and_composite_curves_answer_as_the_command(tmp_path, cli):
+    import pickle
+    # A quarter circle as a clamped rational B-spline of two eighth-circle spans (a double knot at 1),
+    # and a composite of a segment
+    # and a cubic: points made from the known parameter (the circle's angle in closed form).
+    nurbs = {"id": "n", "kind": "nurbs", "degree": 2, "knots": [0, 0, 0, 1, 1, 2, 2, 2],
+             "points": [[1, 0], [1, 0.4142135623730951], [0.7071067811865476, 0.7071067811865476],
+                        [0.4142135623730951, 1], [0, 1]],
+             "weights": [1, 0.9238795325112867, 1, 0.9238795325112867, 1]}
+    composite = {"id": "c", "kind": "composite", "curves": [
+        {"kind": "bezier", "points": [[0, 0], [1, 0]]},
+        {"kind": "bezier", "points": [[1, 0], [2, 1], [3, 1], [4, 0]]}]}
+    curves_path = write_curves(str(tmp_path), [nurbs, composite])
+    plans = bezinv.plan(curves_path)
+    assert plans[0].kind == "nurbs" and len(plans[1].parts) == 2
+    angle = np.linspace(0, np.pi / 2, 9)
+    points = np.stack([np.cos(angle), np.sin(angle)], 1)
+    r = bezinv.invert(plans, points, curve="n")
+    assert np.all(r["status"] == bezinv.OK)
+    # On this circle the knot parameter u in [0, 2] meets the angle at u = 0, 1, 2 (0, 45, 90 degrees).
+    np.testing.assert_allclose(r["t"][[0, 4, 8]], [0, 1, 2], atol=1e-12)
+    assert np.all(np.diff(r["t"]) > 0)
+    np.save(tmp_path / "p.npy", points)
+    run_cli(cli, "invert", "--curves", curves_path, "--points", tmp_path / "p.npy", "--curve", "n", "--out", tmp_path / "o.npy")
+    assert r.tobytes() == np.load(tmp_path / "o.npy").tobytes()
+    on_composite = np.array([[0.5, 0.0], [1.0, 0.0], [4.0, 0.0], [2.5, 0.75], [5.0, -4.0 / 3.0]])  # the last on the extension, s = 4/3
+    rc = bezinv.invert(plans, on_composite, curve="c")
+    np.testing.assert_allclose(rc["t"][:4], [0.5, 1.0, 2.0, 1.5], atol=1e-12)
+    assert [bezinv.status_name(s) for s in rc["status"]] == ["ok"] * 4 + ["outside_segment"]
+    again = pickle.loads(pickle.dumps(plans))
+    assert bezinv.invert(again, on_composite, curve="c").tobytes() == rc.tobytes()
