@@ -20,6 +20,7 @@
 
 #include "bezinv/io.hpp"
 #include "quote.hpp"
+#include "io/curves_text.hpp"
 #include "io/whole_file.hpp"
 
 namespace bezinv {
@@ -452,10 +453,9 @@ Curve parse_curve(const json& entry, std::string& where) {
 
 namespace {
 
-// The file parsed (the SAX builder knows the path of every value, for messages) and its
-// "curves" list checked.
-json parse_curves_file(const std::string& path) {
-  const std::string text = detail::read_whole_file(path, kMaxCurvesBytes, "CURVES.json");
+// The text parsed (the SAX builder knows the path of every value, for messages) and its
+// "curves" list checked; `path` names the file in messages.
+json parse_curves_text(std::string_view text, const std::string& path) {
   LocatingBuilder builder(text);
   // strict: nothing may follow the top-level value.
   if (!json::sax_parse(text, &builder, json::input_format_t::json, /*strict=*/true)) {
@@ -475,8 +475,8 @@ json parse_curves_file(const std::string& path) {
 
 }  // namespace
 
-std::vector<Curve> read_curves_json(const std::string& path) {
-  const json root = parse_curves_file(path);
+std::vector<Curve> detail::parse_curves_json(std::string_view text, const std::string& path) {
+  const json root = parse_curves_text(text, path);
   const json& list = root["curves"];
   std::vector<Curve> curves;
   curves.reserve(list.size());
@@ -500,8 +500,9 @@ std::vector<Curve> read_curves_json(const std::string& path) {
   return curves;
 }
 
-std::vector<std::optional<MatrixWeightedCurve>> read_matrix_weighted_json(const std::string& path) {
-  const json root = parse_curves_file(path);
+std::vector<std::optional<MatrixWeightedCurve>> detail::parse_matrix_weighted_json(std::string_view text,
+                                                                                   const std::string& path) {
+  const json root = parse_curves_text(text, path);
   const json& list = root["curves"];
   std::vector<std::optional<MatrixWeightedCurve>> out(list.size());
   for (std::size_t i = 0; i < list.size(); ++i) {
@@ -520,6 +521,14 @@ std::vector<std::optional<MatrixWeightedCurve>> read_matrix_weighted_json(const 
     }
   }
   return out;
+}
+
+std::vector<Curve> read_curves_json(const std::string& path) {
+  return detail::parse_curves_json(detail::read_whole_file(path, kMaxCurvesBytes, "CURVES.json"), path);
+}
+
+std::vector<std::optional<MatrixWeightedCurve>> read_matrix_weighted_json(const std::string& path) {
+  return detail::parse_matrix_weighted_json(detail::read_whole_file(path, kMaxCurvesBytes, "CURVES.json"), path);
 }
 
 }  // namespace bezinv
