@@ -146,15 +146,22 @@ class CsvPointReader final : public PointReader {
   CsvPointReader(const std::string& path, const std::vector<Curve>& curves) : path_(path), lookup_(curves) {
     file_ = std::fopen(path.c_str(), "rb");
     if (file_ == nullptr) throw InputError(path + ": cannot read: " + std::strerror(errno));
-    // file_size, not fseek/ftell: on ext4 a directory seeks to LLONG_MAX. 0 (unknown) for a pipe.
-    std::error_code no_size;
-    if (std::filesystem::is_regular_file(path, no_size)) {
-      const std::uintmax_t size = std::filesystem::file_size(path, no_size);
-      if (!no_size) progress_.bytes_total = size;
+    // A constructor that throws runs no destructor: the file is closed here, or every refused
+    // file would keep its descriptor (a library user reading many files runs out of them).
+    try {
+      // file_size, not fseek/ftell: on ext4 a directory seeks to LLONG_MAX. 0 (unknown) for a pipe.
+      std::error_code no_size;
+      if (std::filesystem::is_regular_file(path, no_size)) {
+        const std::uintmax_t size = std::filesystem::file_size(path, no_size);
+        if (!no_size) progress_.bytes_total = size;
+      }
+      while (buffer_.size() < 3 && !at_end_) fill();
+      if (std::string_view(buffer_).starts_with("\xEF\xBB\xBF")) position_ = 3;  // UTF-8 BOM (spreadsheet exports)
+      read_header();
+    } catch (...) {
+      std::fclose(file_);
+      throw;
     }
-    while (buffer_.size() < 3 && !at_end_) fill();
-    if (std::string_view(buffer_).starts_with("\xEF\xBB\xBF")) position_ = 3;  // UTF-8 BOM (spreadsheet exports)
-    read_header();
   }
   ~CsvPointReader() override { std::fclose(file_); }
   CsvPointReader(const CsvPointReader&) = delete;
