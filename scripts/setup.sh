@@ -6,6 +6,7 @@ packages=(g++ cmake make ninja-build git pkg-config
           libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev
           libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev libmpfr-dev
           libhwy-dev python3
+          clang libclang-rt-dev  # the sanitizer tree of scripts/test.sh and its libFuzzer targets
           chromium-headless-shell)  # the stress report rendered in a real browser (tests/cli/cli_stress_test.cpp)
 missing=()
 for p in "${packages[@]}"; do

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# README command 2: set up, build, and run every test -- once in Release, once under
-# AddressSanitizer + UndefinedBehaviorSanitizer.
+# README command 2: set up, build, and run every test -- once in Release (GCC), once under
+# AddressSanitizer + UndefinedBehaviorSanitizer (clang), with the fuzz targets briefly.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -16,6 +16,12 @@ cmake --build build -j"$jobs"
 # -O1 -g1: enough for the sanitizers, and quicker to compile than -O2 -g.
 # Kernels for scalar and this machine's instruction set only: the Release tree above checks every
 # one, and the sanitizers look at the code paths, which are the same on each.
-cmake $(generator_args build-sanitize) -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DBEZINV_SANITIZE=ON -DBEZINV_BUILD_TESTS=ON -DBEZINV_BUILD_BENCH=OFF -DBEZINV_KERNEL_TARGETS=native >/dev/null
+# Clang: the same tree builds the unit tests and the libFuzzer targets (BEZINV_FUZZ, tests/fuzz/),
+# which ctest runs for a few seconds each (label fuzz). A tree configured with another compiler
+# before cannot be switched, so it is made again.
+if [ -f build-sanitize/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:[A-Z]*=.*clang++' build-sanitize/CMakeCache.txt; then
+  rm -rf build-sanitize
+fi
+cmake $(generator_args build-sanitize) -S . -B build-sanitize -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DBEZINV_SANITIZE=ON -DBEZINV_FUZZ=ON -DBEZINV_BUILD_TESTS=ON -DBEZINV_BUILD_BENCH=OFF -DBEZINV_KERNEL_TARGETS=native >/dev/null
 cmake --build build-sanitize -j"$jobs"
 (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure --no-tests=error -j"$jobs")
