@@ -8,6 +8,7 @@ packages=(g++ cmake make ninja-build git pkg-config
           libhwy-dev python3
           python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module and its tests
           python3-dask python3-distributed                       # bezinv.dask and its LocalCluster test
+          clang libclang-rt-dev  # the libFuzzer targets (scripts/fuzz.sh)
           chromium-headless-shell)  # the stress report rendered in a real browser (tests/cli/cli_stress_test.cpp)
 missing=()
 for p in "${packages[@]}"; do

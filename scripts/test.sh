@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# README command 2: set up, build, and run every test -- once in Release, once under
-# AddressSanitizer + UndefinedBehaviorSanitizer.
+# README command 2: set up, build, and run every test -- once in Release (GCC), once under
+# AddressSanitizer + UndefinedBehaviorSanitizer (clang), with the fuzz targets briefly.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh

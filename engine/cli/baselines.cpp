@@ -22,7 +22,10 @@
 namespace bezinv::baselines {
 namespace {
 
+// Used by the projectors only: a build without either library has none (clang warns of it).
+#if defined(BEZINV_HAVE_OCCT) || defined(BEZINV_HAVE_SISL)
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+#endif
 
 #ifdef BEZINV_HAVE_OCCT
 // Poles a_i = num_i / w_i (Curve stores rational_bezier as w_i a_i over w_i) and weights w_i.

@@ -33,6 +33,9 @@ using namespace detail;  // the per-row reasons
 // Bytes read from the file at a time: large enough that the syscalls do not show, small enough
 // to stay in L2/L3 while the lines are parsed.
 constexpr std::size_t kReadBytes = std::size_t{1} << 22;
+// ... but no more than a regular file has left, rounded up to this: a small file gets a small
+// buffer (a 4 MiB one, zeroed, for a 100-byte file is what reading it costs).
+constexpr std::size_t kMinReadBytes = std::size_t{1} << 16;
 // The longest line read. A row is three short fields; a longer line is not a points file (a binary
 // file, one without line breaks such as /dev/zero), and holding it would grow memory without end.
 constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;
@@ -143,15 +146,22 @@ class CsvPointReader final : public PointReader {
   CsvPointReader(const std::string& path, const std::vector<Curve>& curves) : path_(path), lookup_(curves) {
     file_ = std::fopen(path.c_str(), "rb");
     if (file_ == nullptr) throw InputError(path + ": cannot read: " + std::strerror(errno));
-    // file_size, not fseek/ftell: on ext4 a directory seeks to LLONG_MAX. 0 (unknown) for a pipe.
-    std::error_code no_size;
-    if (std::filesystem::is_regular_file(path, no_size)) {
-      const std::uintmax_t size = std::filesystem::file_size(path, no_size);
-      if (!no_size) progress_.bytes_total = size;
+    // A constructor that throws runs no destructor: the file is closed here, or every refused
+    // file would keep its descriptor (a library user reading many files runs out of them).
+    try {
+      // file_size, not fseek/ftell: on ext4 a directory seeks to LLONG_MAX. 0 (unknown) for a pipe.
+      std::error_code no_size;
+      if (std::filesystem::is_regular_file(path, no_size)) {
+        const std::uintmax_t size = std::filesystem::file_size(path, no_size);
+        if (!no_size) progress_.bytes_total = size;
+      }
+      while (buffer_.size() < 3 && !at_end_) fill();
+      if (std::string_view(buffer_).starts_with("\xEF\xBB\xBF")) position_ = 3;  // UTF-8 BOM (spreadsheet exports)
+      read_header();
+    } catch (...) {
+      std::fclose(file_);
+      throw;
     }
-    while (buffer_.size() < 3 && !at_end_) fill();
-    if (std::string_view(buffer_).starts_with("\xEF\xBB\xBF")) position_ = 3;  // UTF-8 BOM (spreadsheet exports)
-    read_header();
   }
   ~CsvPointReader() override { std::fclose(file_); }
   CsvPointReader(const CsvPointReader&) = delete;
@@ -184,13 +194,19 @@ class CsvPointReader final : public PointReader {
     buffer_.erase(0, position_);
     position_ = 0;
     const std::size_t kept = buffer_.size();
-    buffer_.resize(kept + kReadBytes);
-    const std::size_t got = std::fread(buffer_.data() + kept, 1, kReadBytes, file_);
+    // At least a byte past a regular file's size, so its end is seen in the same read (and a file
+    // that grew since it was measured is read on).
+    const std::uint64_t left = progress_.bytes_total > progress_.bytes ? progress_.bytes_total - progress_.bytes : 0;
+    const std::size_t step = progress_.bytes_total == 0
+                                 ? kReadBytes
+                                 : static_cast<std::size_t>(std::clamp<std::uint64_t>(left + 1, kMinReadBytes, kReadBytes));
+    buffer_.resize(kept + step);
+    const std::size_t got = std::fread(buffer_.data() + kept, 1, step, file_);
     buffer_.resize(kept + got);
     // fread on a directory opens fine and fails here with EISDIR.
     if (std::ferror(file_)) throw InputError(path_ + ": cannot read: " + std::strerror(errno));
     progress_.bytes += got;
-    at_end_ = got < kReadBytes && std::feof(file_);
+    at_end_ = got < step && std::feof(file_);
   }
 
   // The next line, CR of a CRLF ending removed; false at the end of the file. The view lasts

@@ -138,8 +138,7 @@ PlanData make_plan_data(const Curve& given) {
   // The coordinates' own resolution: a point made on the curve and rounded to doubles is within
   // an ulp of it, wherever the curve sits (a 1-unit curve at 1e12 has ulps of 1.2e-4).
   const double magnitude = std::max({std::abs(lo[0]), std::abs(hi[0]), std::abs(lo[1]), std::abs(hi[1])});
-  plan.normalized_resolution =
-      kResolutionUlps * (std::nextafter(magnitude, std::numeric_limits<double>::infinity()) - magnitude) * plan.inverse_scale;
+  plan.normalized_resolution = kResolutionUlps * ulp(magnitude) * plan.inverse_scale;
 
   // Rotation (one denominator only): turn the principal axis of the control points to 45 degrees,
   // so neither coordinate of a straight segment is constant (a constant x makes p = X - x0 W

@@ -8,6 +8,8 @@
 //               =        B0         - x0        Bx          - y0        By          + x0 y0     Bxy,
 // with Bxy = Bez(W, W) = 0 when the denominators are one W (rational Bezier), so B is affine there.
 #include <array>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <span>
@@ -18,6 +20,13 @@
 #include "bezinv/plan.hpp"
 
 namespace bezinv::detail {
+
+// The spacing of the doubles at `magnitude` (>= 0): the step up, except at the largest double,
+// whose step up is inf (which made the tolerance floor inf there: every point on the curve).
+inline double ulp(double magnitude) {
+  const double above = std::nextafter(magnitude, std::numeric_limits<double>::infinity());
+  return std::isfinite(above) ? above - magnitude : magnitude - std::nextafter(magnitude, 0.0);
+}
 
 // What only the answers off the curve need: the certified nearest point of the segment and the
 // clearance of the extension. Up to about four times the rest of a plan to make (sign tests on

@@ -21,9 +21,12 @@ void symmetric_svd(int n, std::span<const double> B, std::span<double> sigma, st
     for (int c = 0; c <= r; ++c) m(r, c) = B[r * n + c];
   // GCC 12 reports -Wmaybe-uninitialized inside Eigen's tridiagonal QR for max-size matrices: the
   // solver writes its n x n eigenvector block before reading it, but the analysis cannot see that
-  // the inline 32 x 32 storage is only used up to n. A false positive, silenced here only.
+  // the inline 32 x 32 storage is only used up to n. A false positive, silenced here only (clang
+  // has no such warning, and would warn about the unknown option).
 #pragma GCC diagnostic push
+#if !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
   Eigen::SelfAdjointEigenSolver<Matrix> solver;
   solver.compute(m, Eigen::ComputeEigenvectors);  // reads the lower triangle only
   const auto& lambda = solver.eigenvalues();

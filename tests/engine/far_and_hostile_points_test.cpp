@@ -220,6 +220,26 @@ TEST(OrdinaryFarAndHostile, MapCoordinates) {
 
 // Random curves of every kind, degree 2..12, scaled to control points near 1e154 and 1e-154 (whose
 // squares are near the ends of the doubles' range): points at known t are ok, as at unit size.
+// Found by tests/fuzz/fuzz_invert (corpus: largest_double_control_point.bin): a control point at
+// the largest double made the tolerance's floor (4 ulps of the curve's largest coordinate) inf,
+// the step above that double being inf, so every point was on the curve. The floor is 4 ulps of
+// that binade, and the tolerance 1e-6 of the diagonal, as for any other curve.
+TEST(OrdinaryFarAndHostile, AControlPointAtTheLargestDoubleKeepsAFiniteTolerance) {
+  const double big = std::numeric_limits<double>::max();
+  const InversionPlan plan = make_plan(Curve::bezier("edge", {{0, 0}, {big, 0}}));
+  const PointResult on = invert_point(plan, {big / 2, big * 1e-9});
+  EXPECT_EQ(on.status, Status::ok);
+  EXPECT_NEAR(on.t, 0.5, 1e-12);
+  // 1e-5 of the diagonal away: off the curve, at its foot.
+  const PointResult off = invert_point(plan, {big / 4, big * 1e-5});
+  EXPECT_EQ(off.status, Status::off_curve);
+  EXPECT_NEAR(off.t, 0.25, 1e-12);
+  EXPECT_NEAR(off.residual / big, 1e-5, 1e-12);
+  const InversionPlan space = make_plan(Curve::space_bezier("edge", {{0, 0, 0}, {big, 0, 0}}));
+  EXPECT_EQ(invert_point(space, Point3(big / 2, 0, big * 1e-9)).status, Status::ok);
+  EXPECT_EQ(invert_point(space, Point3(big / 4, 0, big * 1e-5)).status, Status::off_curve);
+}
+
 TEST(OrdinaryFarAndHostile, HugeAndTinyCurves) {
   Findings findings("control points near 1e154 and 1e-154");
   int skipped = 0;

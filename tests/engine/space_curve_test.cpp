@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -285,6 +286,36 @@ TEST(SpaceCurves, APlaneCurveInATiltedPlaneAnswersAsInItsPlane) {
 }
 
 // Lines, degree-elevated curves and a curve far from the origin.
+// Found by tests/fuzz/fuzz_invert (corpus: space_point_beyond_the_largest_double.bin): a finite
+// point more than the largest double from a curve's centre overflowed the projection to the plane
+// and came back invalid_input. It is off the curve, at the nearest point of the segment, as in the
+// plane; and a huge curve's point whose projection overflows but whose normalized point does not
+// is answered by the search in space.
+TEST(SpaceCurves, AFinitePointBeyondTheLargestDoubleFromTheCurveIsOffTheCurve) {
+  const double big = std::numeric_limits<double>::max();
+  for (const bool refine : {true, false}) {
+    const InvertOptions options{.refine = refine};
+    // A unit segment at x = -big, the point at x = +big: 2 big away, in input and normalized units.
+    // From there every point of the segment is as near, to within its size over the distance.
+    const InversionPlan small = make_plan(Curve::space_bezier("far", {{-big, 0, 0}, {-big, 1, 0}}));
+    for (const double y : {0.0, -5.0, 0.25, 7.0}) {
+      const PointResult r = invert_point(small, Point3(big, y, 0), options);
+      EXPECT_EQ(r.status, Status::off_curve) << r.reason;
+      EXPECT_EQ(r.path, Path::nearest);
+      EXPECT_GE(r.t, 0.0) << y;
+      EXPECT_LE(r.t, 1.0) << y;
+      EXPECT_EQ(r.residual, std::numeric_limits<double>::infinity());  // the distance exceeds the largest double
+    }
+    // A curve as wide as half the doubles, far on one side: the point's projection overflows, its
+    // normalized coordinates do not.
+    const InversionPlan huge = make_plan(Curve::space_bezier("huge", {{-big, 0, 0}, {-big / 2, 0, 0}}));
+    const PointResult r = invert_point(huge, Point3(0.3 * big, 0, 0.25 * big), options);
+    EXPECT_EQ(r.status, Status::off_curve) << r.reason;
+    EXPECT_NEAR(r.t, 1.0, 1e-12);
+    EXPECT_NEAR(r.residual / big, std::hypot(0.8, 0.25), 1e-12);
+  }
+}
+
 TEST(SpaceCurves, LinesElevatedAndFarCurves) {
   const Curve line = Curve::space_bezier("line", {{0, 0, 0}, {1, 2, 3}});
   const PointResult on_line = invert_point(make_plan(line), Point3(0.25, 0.5, 0.75));

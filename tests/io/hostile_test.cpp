@@ -10,6 +10,7 @@
 #include <csignal>
 #include <cstdint>
 #include <filesystem>
+#include <iterator>
 #include <fstream>
 #include <functional>
 #include <initializer_list>
@@ -263,6 +264,24 @@ TEST_F(CsvHostile, RefusesALineLongerThanTheLimitNamingIt) {
   expect_refused("curve,x,y\n" + std::string(5 * kLimit, '\0'), {":2:", "line longer than"});
   // Blank lines too are lines.
   expect_refused("\n\n" + std::string(kLimit + 1, ' '), {":3:", "line longer than"});
+}
+
+// Found by tests/fuzz/fuzz_points_csv, which ran out of file descriptors after about a thousand
+// inputs: a CSV refused for its header left its file open (the reader's constructor threw, so its
+// destructor never ran). Every refused file is closed, and so is every read one.
+TEST_F(CsvHostile, RefusedAndReadFilesLeaveNoDescriptorOpen) {
+  auto open_descriptors = [] {
+    return std::distance(std::filesystem::directory_iterator("/proc/self/fd"), std::filesystem::directory_iterator{});
+  };
+  const std::string bad = scratch.write("bad.csv", "x,y\n1,2\n"), empty = scratch.write("empty.csv", ""),
+                    good = scratch.write("good.csv", "curve,x,y\na,1,2\n");
+  const auto before = open_descriptors();
+  for (int i = 0; i < 50; ++i) {
+    EXPECT_THROW(open_points(bad, curves), InputError);
+    EXPECT_THROW(open_points(empty, curves), InputError);
+    EXPECT_EQ(detail::read_points_csv(good, curves).size(), 1u);
+  }
+  EXPECT_EQ(open_descriptors(), before);
 }
 
 TEST_F(CsvHostile, StopsReadingDevZeroAtTheFirstLine) {

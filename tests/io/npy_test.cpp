@@ -366,5 +366,30 @@ TEST_F(Stream, CsvLinesSpanningReadBlocks) {
   EXPECT_EQ(reader->progress().bytes_total, csv.size());
 }
 
+TEST_F(Stream, CsvFilesAroundTheSmallReadStep) {
+  // A regular file is read in steps of its size + 1 (at least 64 KiB, at most 4 MiB): files just
+  // under, at and over a step, and a tiny one, give every row and see their end.
+  for (const std::size_t size : {std::size_t{24}, std::size_t{65535}, std::size_t{65536}, std::size_t{65537},
+                                 std::size_t{131073}}) {
+    std::string rows;
+    std::size_t count = 0;
+    for (; 10 + rows.size() + 11 <= size; ++count) rows += "line,1,0.5\n";
+    // The first row's x padded with leading zeros (still 1) to the exact size.
+    std::string csv = "curve,x,y\nline," + std::string(size - 10 - rows.size(), '0') + rows.substr(5);
+    ASSERT_EQ(csv.size(), size);
+    const auto reader = open_points(scratch.write("sized.csv", csv), curves);
+    std::vector<PointRow> got_rows(1000);
+    std::size_t seen = 0;
+    while (const std::size_t got = reader->read(got_rows)) {
+      for (std::size_t k = 0; k < got; ++k, ++seen) {
+        ASSERT_EQ(got_rows[k].curve, 1) << size << " " << seen;
+        ASSERT_EQ(got_rows[k].point.x, 1.0) << size << " " << seen;
+      }
+    }
+    EXPECT_EQ(seen, count) << size;
+    EXPECT_EQ(reader->progress().bytes, size);
+  }
+}
+
 }  // namespace
 }  // namespace bezinv

@@ -18,6 +18,7 @@
 
 #include "support/bits.hpp"
 #include "bezinv/io.hpp"
+#include "io/curves_text.hpp"
 #include "io/read_points_csv.hpp"
 #include "support/expect_input_error.hpp"
 #include "support/scratch_directory.hpp"
@@ -84,6 +85,27 @@ TEST_F(IoCurvesJson, ReadsTheThreeKindsWithExactNumbers) {
   EXPECT_EQ(curves[2].x_den, (std::vector<double>{1, 2, 1}));
   EXPECT_EQ(curves[2].y_num, (std::vector<double>{1, -0.3, 0.2}));
   EXPECT_EQ(curves[2].y_den, (std::vector<double>{2, 3, 4}));
+}
+
+TEST_F(IoCurvesJson, TextInMemoryReadsAsTheFileAndNamesTheGivenPath) {
+  // parse_curves_json is read_curves_json after the file is read (the fuzz target's entry).
+  const std::string json = R"({"curves": [
+    {"id": "a", "kind": "bezier", "points": [[0, 0], [1, 2], [3, 1]]},
+    {"id": "m", "kind": "matrix_weighted_bezier", "points": [[0, 0], [1, 1]], "matrices": [[[1, 0], [0, 2]], [[2, 0.5], [0.5, 1]]]}
+  ]})";
+  const std::string path = scratch.write("curves.json", json);
+  const std::vector<Curve> from_file = read_curves_json(path), from_text = parse_curves_json(json, "named.json");
+  ASSERT_EQ(from_text.size(), from_file.size());
+  for (std::size_t i = 0; i < from_file.size(); ++i) {
+    EXPECT_EQ(from_text[i].id, from_file[i].id);
+    EXPECT_EQ(from_text[i].x_num, from_file[i].x_num);
+    EXPECT_EQ(from_text[i].y_den, from_file[i].y_den);
+  }
+  const auto matrix_weighted = detail::parse_matrix_weighted_json(json, "named.json");
+  ASSERT_EQ(matrix_weighted.size(), 2u);
+  EXPECT_FALSE(matrix_weighted[0].has_value());
+  EXPECT_TRUE(matrix_weighted[1].has_value());
+  expect_input_error([&] { parse_curves_json(R"({"curves": []})", "named.json"); }, {"named.json", "empty list"});
 }
 
 TEST_F(IoCurvesJson, RefusesAnUnreadableFile) {

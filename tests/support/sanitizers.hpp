@@ -7,8 +7,15 @@
 
 namespace bezinv::test_support {
 
+// GCC says so by __SANITIZE_ADDRESS__, clang (before 15) by __has_feature only.
 #if defined(__SANITIZE_ADDRESS__)
 inline constexpr int kSanitizerThinning = 4;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr int kSanitizerThinning = 4;
+#else
+inline constexpr int kSanitizerThinning = 1;
+#endif
 #else
 inline constexpr int kSanitizerThinning = 1;
 #endif

@@ -1,15 +1,48 @@
 #include "space/invert_space.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <mutex>
 #include <vector>
 
 #include "pipeline/schedule.hpp"
+#include "bezinv/tolerances.hpp"
 #include "space/space_curve.hpp"
 
 namespace bezinv::detail {
+namespace {
+
+// The answer to a finite point the plane engine could not take (its projection overflowed): the
+// nearest point of the segment in space, by the search of space_answer where the normalized point
+// is finite, else (it is farther than the largest double in the curve's own units too) from its
+// direction, as the plane's answer_far_point: the nearest point to a stand-in on its ray from the
+// centre at kFarStandIn, in coordinates scaled by a power of two so nothing overflows.
+void answer_overflowing_point(const SpaceData& space, const std::array<double, 3>& given,
+                              const std::array<double, 3>& normalized, double tolerance, PointResult& r) {
+  r = PointResult{};
+  r.status = Status::off_curve;
+  if (std::isfinite(normalized[0]) && std::isfinite(normalized[1]) && std::isfinite(normalized[2])) {
+    InvertOptions search;  // refine on: space_answer searches for the nearest point of an off_curve row
+    space_answer(space, normalized, tolerance, search, r);
+    return;
+  }
+  const double largest = std::max({std::abs(given[0]), std::abs(given[1]), std::abs(given[2])});
+  const double centre = std::max({std::abs(space.centre[0]), std::abs(space.centre[1]), std::abs(space.centre[2]), 1.0});
+  const int e = std::max(std::ilogb(largest), std::ilogb(centre));
+  std::array<double, 3> direction;
+  for (int k = 0; k < 3; ++k) direction[k] = std::ldexp(given[k], -e) - std::ldexp(space.centre[k], -e);
+  const double length = std::hypot(direction[0], direction[1], direction[2]);
+  for (double& d : direction) d *= kFarStandIn / length;
+  r.path = Path::nearest;
+  r.t = space_nearest(space, direction).t;
+  // |P(t) - P0| in input units, halved first so the differences do not overflow.
+  const auto p = space.curve.point3(r.t);
+  r.residual = 2 * std::hypot(0.5 * p[0] - 0.5 * given[0], 0.5 * p[1] - 0.5 * given[1], 0.5 * p[2] - 0.5 * given[2]);
+}
+
+}  // namespace
 
 void invert_space_curve(const PlanData& plan, std::span<const Point> points, std::span<const double> z,
                         std::span<PointResult> results, const InvertOptions& options, StageSeconds* stages) {
@@ -59,8 +92,19 @@ void invert_space_curve(const PlanData& plan, std::span<const Point> points, std
                        stages ? &local : nullptr);
           // 3. Every answer in space.
           start = std::chrono::steady_clock::now();
-          for (std::size_t i = begin; i < end; ++i)
-            space_answer(space, space_normalize(space, points[i].x, points[i].y, z[i]), tolerance, options, results[i]);
+          for (std::size_t i = begin; i < end; ++i) {
+            const std::array<double, 3> point = space_normalize(space, points[i].x, points[i].y, z[i]);
+            // A finite point whose projection overflowed (more than the largest double from the
+            // centre, for a curve near the end of the double range) came back invalid_input from
+            // the plane engine. It is not: it gets the nearest point of the segment in space, as a
+            // point the plane puts off the curve does.
+            if (results[i].status == Status::invalid_input && std::isfinite(points[i].x) &&
+                std::isfinite(points[i].y) && std::isfinite(z[i])) {
+              answer_overflowing_point(space, {points[i].x, points[i].y, z[i]}, point, tolerance, results[i]);
+              continue;
+            }
+            space_answer(space, point, tolerance, options, results[i]);
+          }
           if (stages) space_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         }
         if (!stages) return;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "bezinv/bernstein.hpp"
+#include "plan_data.hpp"
 #include "bezinv/tolerances.hpp"
 #include "quote.hpp"
 
@@ -132,9 +133,8 @@ SpaceData make_space_data(const Curve& curve) {
       lo[k] = std::min(lo[k], x);
       hi[k] = std::max(hi[k], x);
     }
-  const double half_diagonal =
-      std::sqrt(std::pow(0.5 * hi[0] - 0.5 * lo[0], 2) + std::pow(0.5 * hi[1] - 0.5 * lo[1], 2) +
-                std::pow(0.5 * hi[2] - 0.5 * lo[2], 2));
+  // hypot: the squares of a box wider than ~1e154 overflow, which left the curve unscaled.
+  const double half_diagonal = std::hypot(0.5 * hi[0] - 0.5 * lo[0], 0.5 * hi[1] - 0.5 * lo[1], 0.5 * hi[2] - 0.5 * lo[2]);
   space.diagonal = 2 * half_diagonal;
   for (int k = 0; k < 3; ++k) space.centre[k] = 0.5 * lo[k] + 0.5 * hi[k];
   if (half_diagonal > 0 && std::isfinite(half_diagonal)) {
@@ -146,9 +146,7 @@ SpaceData make_space_data(const Curve& curve) {
   }
   const double magnitude = std::max({std::abs(lo[0]), std::abs(hi[0]), std::abs(lo[1]), std::abs(hi[1]),
                                      std::abs(lo[2]), std::abs(hi[2])});
-  space.normalized_resolution =
-      kResolutionUlps * (std::nextafter(magnitude, std::numeric_limits<double>::infinity()) - magnitude) *
-      space.inverse_scale;
+  space.normalized_resolution = kResolutionUlps * ulp(magnitude) * space.inverse_scale;
 
   // The principal axes of the control points (normalized units, about the box's centre).
   std::array<std::array<double, 3>, 3> covariance{}, axes{};
