@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bezinv/io.hpp"
+#include "bezinv/tolerances.hpp"
 #include "quote.hpp"
 #include "io/curves_text.hpp"
 #include "io/whole_file.hpp"
@@ -254,8 +255,9 @@ std::vector<std::array<double, 2>> plane_points(const std::vector<std::array<dou
 // Every field a curve may have, by kind. Any other field is refused rather than ignored: a typo
 // ("weight") or a field of another kind (weights on a polynomial "bezier") would otherwise change
 // nothing and go unnoticed.
-constexpr const char* kAllCurveFields[] = {"id",    "kind",  "points",   "weights", "x_num",    "x_den",  "y_num", "y_den",
-                                           "z_num", "z_den", "matrices", "normals", "tangents", "omegas", "mus"};
+constexpr const char* kAllCurveFields[] = {"id",     "kind",    "points",   "weights", "x_num", "x_den",
+                                           "y_num",  "y_den",   "z_num",    "z_den",   "matrices", "normals",
+                                           "tangents", "omegas", "mus",     "degree",  "knots", "curves"};
 
 void refuse_other_fields(const json& curve, std::initializer_list<const char*> fields, const char* kind,
                          const std::string& where) {
@@ -365,17 +367,72 @@ MatrixWeightedCurve parse_matrix_weighted(const json& entry, std::string id, con
   return c;
 }
 
-Curve parse_curve(const json& entry, std::string& where) {
+Curve parse_curve(const json& entry, std::string& where, bool part = false);
+
+// {"kind": "nurbs", "degree": p, "knots": [...], "points": [...], optional "weights": [...]}; the
+// knot vector and the weights are checked by validate().
+Curve parse_nurbs(const json& entry, std::string id, const std::string& where) {
+  refuse_other_fields(entry, {"id", "kind", "degree", "knots", "points", "weights"}, "nurbs", where);
+  const json& degree_value = required_field(entry, "degree", where);
+  if (!degree_value.is_number_integer())
+    fail(where, "degree: expected an integer, found " +
+                    (degree_value.is_number() ? "the number " + degree_value.dump() : a_type_name(degree_value)));
+  const long long degree = degree_value.get<long long>();
+  if (degree < 1 || degree > kMaxDegree)
+    fail(where, "degree: " + std::to_string(degree) + " is not in 1.." + std::to_string(kMaxDegree));
+  int dimension = 0;
+  const auto points = point_list(entry, where, dimension);
+  const auto knots = number_list(entry, "knots", where);
+  std::vector<double> weights;
+  if (entry.contains("weights")) {
+    weights = number_list(entry, "weights", where);
+    if (weights.size() != points.size())
+      fail(where, "weights: " + std::to_string(weights.size()) + " weights for " + std::to_string(points.size()) +
+                      " points (need one per point)");
+    for (std::size_t i = 0; i < points.size(); ++i)
+      for (int k = 0; k < dimension; ++k)
+        if (!std::isfinite(weights[i] * points[i][k]))
+          fail(where, "points[" + std::to_string(i) + "]: times weights[" + std::to_string(i) +
+                          "] overflows the double range");
+  }
+  return dimension == 3 ? Curve::space_nurbs(std::move(id), static_cast<int>(degree), knots, points, weights)
+                        : Curve::nurbs(std::move(id), static_cast<int>(degree), knots, plane_points(points), weights);
+}
+
+// {"kind": "composite", "curves": [CURVE, ...]}: each CURVE as at the top level, its id optional;
+// the joints are checked by validate().
+Curve parse_composite(const json& entry, std::string id, const std::string& where) {
+  refuse_other_fields(entry, {"id", "kind", "curves"}, "composite", where);
+  const json& list = required_field(entry, "curves", where);
+  if (!list.is_array()) fail(where, "curves: expected an array of curves, found " + a_type_name(list));
+  if (list.empty()) fail(where, "curves: empty list (need at least one curve)");
+  std::vector<Curve> parts;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    std::string part_where = where + ": curves[" + std::to_string(i) + "]";
+    const json& kind = list[i].is_object() ? list[i].value("kind", json()) : json();
+    if (kind.is_string() && kind.get<std::string>() == "composite")
+      fail(part_where, "kind composite inside a composite (list its curves in this one instead)");
+    parts.push_back(parse_curve(list[i], part_where, /*part=*/true));
+  }
+  return Curve::composite(std::move(id), std::move(parts));
+}
+
+// A curve object; `part`: one of a composite's curves, whose id is optional (POINTS.csv names the
+// composite, not its parts).
+Curve parse_curve(const json& entry, std::string& where, bool part) {
   if (!entry.is_object()) fail(where, "expected an object, found " + a_type_name(entry));
 
-  const json& id_value = required_field(entry, "id", where);
-  if (!id_value.is_string()) fail(where, "id: expected a string, found " + a_type_name(id_value));
-  std::string id = id_value.get<std::string>();
-  if (id.empty()) fail(where, "id: empty");
-  where += " (id " + quoted_excerpt(id) + ")";
-  if (!id_fits_points_csv(id))
-    fail(where, "id: must not contain commas, quotes, control characters or surrounding spaces "
-                "(POINTS.csv refers to curves by id)");
+  std::string id;
+  if (!part || entry.contains("id")) {
+    const json& id_value = required_field(entry, "id", where);
+    if (!id_value.is_string()) fail(where, "id: expected a string, found " + a_type_name(id_value));
+    id = id_value.get<std::string>();
+    if (id.empty()) fail(where, "id: empty");
+    where += " (id " + quoted_excerpt(id) + ")";
+    if (!id_fits_points_csv(id))
+      fail(where, "id: must not contain commas, quotes, control characters or surrounding spaces "
+                  "(POINTS.csv refers to curves by id)");
+  }
 
   const json& kind_value = required_field(entry, "kind", where);
   if (!kind_value.is_string()) fail(where, "kind: expected a string, found " + a_type_name(kind_value));
@@ -445,8 +502,10 @@ Curve parse_curve(const json& entry, std::string& where) {
       fail(where, std::string(message));
     }
   }
+  if (kind == "nurbs") return parse_nurbs(entry, std::move(id), where);
+  if (kind == "composite") return parse_composite(entry, std::move(id), where);
   fail(where, "kind: unknown " + quoted_excerpt(kind) +
-                  " (expected bezier, rational_bezier, rational or matrix_weighted_bezier)");
+                  " (expected bezier, rational_bezier, rational, matrix_weighted_bezier, nurbs or composite)");
 }
 
 }  // namespace
@@ -454,9 +513,8 @@ Curve parse_curve(const json& entry, std::string& where) {
 namespace {
 
 // The text parsed (the SAX builder knows the path of every value, for messages) and its
-// "curves" list checked; `path` names the file in messages.
+// "curves" list checked; `path` names it in errors.
 json parse_curves_text(std::string_view text, const std::string& path) {
-  // Text from memory has not passed the file's size check.
   if (text.size() > kMaxCurvesBytes)
     fail(path, std::to_string(text.size()) + " bytes, more than " + std::to_string(kMaxCurvesBytes) +
                    " bytes, the limit for CURVES.json");
@@ -477,10 +535,11 @@ json parse_curves_text(std::string_view text, const std::string& path) {
   return root;
 }
 
-}  // namespace
+json parse_curves_file(const std::string& path) {
+  return parse_curves_text(detail::read_whole_file(path, kMaxCurvesBytes, "CURVES.json"), path);
+}
 
-std::vector<Curve> parse_curves_json(std::string_view text, const std::string& path) {
-  const json root = parse_curves_text(text, path);
+std::vector<Curve> curves_from_json(const json& root, const std::string& path) {
   const json& list = root["curves"];
   std::vector<Curve> curves;
   curves.reserve(list.size());
@@ -504,6 +563,14 @@ std::vector<Curve> parse_curves_json(std::string_view text, const std::string& p
   return curves;
 }
 
+}  // namespace
+
+std::vector<Curve> read_curves_json(const std::string& path) { return curves_from_json(parse_curves_file(path), path); }
+
+std::vector<Curve> parse_curves_json(std::string_view text, const std::string& name) {
+  return curves_from_json(parse_curves_text(text, name), name);
+}
+
 std::vector<std::optional<MatrixWeightedCurve>> detail::parse_matrix_weighted_json(std::string_view text,
                                                                                    const std::string& path) {
   const json root = parse_curves_text(text, path);
@@ -525,10 +592,6 @@ std::vector<std::optional<MatrixWeightedCurve>> detail::parse_matrix_weighted_js
     }
   }
   return out;
-}
-
-std::vector<Curve> read_curves_json(const std::string& path) {
-  return parse_curves_json(detail::read_whole_file(path, kMaxCurvesBytes, "CURVES.json"), path);
 }
 
 std::vector<std::optional<MatrixWeightedCurve>> read_matrix_weighted_json(const std::string& path) {
