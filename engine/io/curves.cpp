@@ -246,6 +246,20 @@ std::vector<std::array<double, 3>> point_list(const json& curve, const std::stri
   return out;
 }
 
+// One weight per point, each product w_i P_i within the double range: the curve is stored
+// homogeneously (w_i x_i, w_i y_i), and a product beyond the range would reach validate() as a
+// non-finite x_num, a field the file does not have.
+void check_weights(const std::vector<double>& weights, const std::vector<std::array<double, 3>>& points, int dimension,
+                   const std::string& where) {
+  if (weights.size() != points.size())
+    fail(where, "weights: " + std::to_string(weights.size()) + " weights for " + std::to_string(points.size()) +
+                    " points (need one per point)");
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int k = 0; k < dimension; ++k)
+      if (!std::isfinite(weights[i] * points[i][k]))
+        fail(where, "points[" + std::to_string(i) + "]: times weights[" + std::to_string(i) + "] overflows the double range");
+}
+
 std::vector<std::array<double, 2>> plane_points(const std::vector<std::array<double, 3>>& points) {
   std::vector<std::array<double, 2>> out;
   for (const auto& p : points) out.push_back({p[0], p[1]});
@@ -386,14 +400,7 @@ Curve parse_nurbs(const json& entry, std::string id, const std::string& where) {
   std::vector<double> weights;
   if (entry.contains("weights")) {
     weights = number_list(entry, "weights", where);
-    if (weights.size() != points.size())
-      fail(where, "weights: " + std::to_string(weights.size()) + " weights for " + std::to_string(points.size()) +
-                      " points (need one per point)");
-    for (std::size_t i = 0; i < points.size(); ++i)
-      for (int k = 0; k < dimension; ++k)
-        if (!std::isfinite(weights[i] * points[i][k]))
-          fail(where, "points[" + std::to_string(i) + "]: times weights[" + std::to_string(i) +
-                          "] overflows the double range");
+    check_weights(weights, points, dimension, where);
   }
   return dimension == 3 ? Curve::space_nurbs(std::move(id), static_cast<int>(degree), knots, points, weights)
                         : Curve::nurbs(std::move(id), static_cast<int>(degree), knots, plane_points(points), weights);
@@ -449,16 +456,7 @@ Curve parse_curve(const json& entry, std::string& where, bool part) {
     int dimension = 0;
     const auto points = point_list(entry, where, dimension);
     auto weights = number_list(entry, "weights", where);
-    if (weights.size() != points.size())
-      fail(where, "weights: " + std::to_string(weights.size()) + " weights for " + std::to_string(points.size()) +
-                      " points (need one per point)");
-    // The curve is stored homogeneously (w_i x_i, w_i y_i); a product beyond the double range
-    // would reach validate() as a non-finite x_num, a field the file does not have.
-    for (std::size_t i = 0; i < points.size(); ++i)
-      for (int k = 0; k < dimension; ++k)
-        if (!std::isfinite(weights[i] * points[i][k]))
-          fail(where, "points[" + std::to_string(i) + "]: times weights[" + std::to_string(i) +
-                          "] overflows the double range");
+    check_weights(weights, points, dimension, where);
     return dimension == 3 ? Curve::space_rational_bezier(std::move(id), points, weights)
                           : Curve::rational_bezier(std::move(id), plane_points(points), weights);
   }

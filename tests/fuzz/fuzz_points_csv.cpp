@@ -11,6 +11,7 @@
 #include "bezinv/curve.hpp"
 #include "bezinv/io.hpp"
 #include "fuzz_file.hpp"
+#include "point_rows.hpp"
 
 namespace {
 
@@ -33,25 +34,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   bezinv::fuzz::write_bytes(path, data, size);
   try {
     const std::unique_ptr<bezinv::PointReader> reader = bezinv::open_points(path, curves);
-    // Three rows at a time: rows that straddle the reader's calls.
-    std::vector<bezinv::PointRow> rows(3);
-    std::uint64_t total = 0;
-    while (const std::size_t got = reader->read(rows)) {
-      if (got > rows.size()) __builtin_trap();
-      total += got;
-      for (std::size_t i = 0; i < got; ++i) {
-        const bezinv::PointRow& row = rows[i];
-        if (row.curve < -1 || row.curve >= static_cast<int>(curves.size())) __builtin_trap();
-        if (row.reason == nullptr) __builtin_trap();
-        if (row.curve == -1) {
-          if (row.reason[0] == '\0') __builtin_trap();
-          continue;
-        }
-        if (!std::isfinite(row.point.x) || !std::isfinite(row.point.y)) __builtin_trap();
-        const bool space = curves[static_cast<std::size_t>(row.curve)].dimension() == 3;
-        if (space != !std::isnan(row.z) || (space && !std::isfinite(row.z))) __builtin_trap();
-      }
-    }
+    const std::uint64_t total = bezinv::fuzz::read_checked_rows(*reader, curves, 3);
     if (reader->progress().points != total) __builtin_trap();
   } catch (const bezinv::InputError&) {
   }

@@ -14,6 +14,7 @@
 #include "bezinv/invert.hpp"
 #include "bezinv/io.hpp"
 #include "fuzz_file.hpp"
+#include "point_rows.hpp"
 #include "support/npy_bytes.hpp"
 
 namespace {
@@ -29,23 +30,7 @@ void read_all_points(const std::string& path, const std::vector<bezinv::Curve>& 
                      const bezinv::CurveSelection& selection) {
   try {
     const std::unique_ptr<bezinv::PointReader> reader = bezinv::open_points(path, curves, selection);
-    std::vector<bezinv::PointRow> rows(2);
-    std::uint64_t total = 0;
-    while (const std::size_t got = reader->read(rows)) {
-      if (got > rows.size()) __builtin_trap();
-      total += got;
-      for (std::size_t i = 0; i < got; ++i) {
-        const bezinv::PointRow& row = rows[i];
-        if (row.curve < -1 || row.curve >= static_cast<int>(curves.size()) || row.reason == nullptr) __builtin_trap();
-        if (row.curve == -1) {
-          if (row.reason[0] == '\0') __builtin_trap();
-          continue;
-        }
-        if (!std::isfinite(row.point.x) || !std::isfinite(row.point.y)) __builtin_trap();
-        const bool space = curves[static_cast<std::size_t>(row.curve)].dimension() == 3;
-        if (space != !std::isnan(row.z) || (space && !std::isfinite(row.z))) __builtin_trap();
-      }
-    }
+    const std::uint64_t total = bezinv::fuzz::read_checked_rows(*reader, curves, 2);
     const bezinv::ReadProgress progress = reader->progress();
     if (progress.points != total || progress.points != progress.points_total) __builtin_trap();
   } catch (const bezinv::InputError&) {
