@@ -80,6 +80,10 @@ int curve_named(const std::vector<bezinv::Curve>& curves, const std::string& sel
   return index < curves.size() ? static_cast<int>(index) : -1;
 }
 
+// Rows per engine call on the in-place path: a chunk's results (56 bytes a row, 3.5 MB) are still
+// in cache when they are packed (BENCHMARKS.md "Python": 2^16 was quicker than 2^20 and 2^22).
+constexpr std::size_t kInPlaceChunkPoints = std::size_t{1} << 16;
+
 // The common case, read in place: planned curves, one plane curve for every row, every coordinate
 // finite. No row then needs the reader's checks, and the engine reads the numpy memory as its
 // Points a chunk at a time, into a chunk of results packed as the writer packs them. The answers
@@ -96,7 +100,7 @@ bool invert_in_place(const Curves& curves, const bezinv::PointArray& array, std:
   const std::size_t rows = array.coordinates.size() / 2;
   const auto* points = reinterpret_cast<const bezinv::Point*>(array.coordinates.data());
   const auto writer = bezinv::open_results(records);
-  std::vector<bezinv::PointResult> results(std::min(rows, bezinv::kDefaultChunkPoints));
+  std::vector<bezinv::PointResult> results(std::min(rows, kInPlaceChunkPoints));
   for (std::size_t begin = 0; begin < rows; begin += results.size()) {
     const std::size_t count = std::min(results.size(), rows - begin);
     const std::span<bezinv::PointResult> chunk = std::span(results).first(count);
