@@ -200,7 +200,7 @@ double number(const json& value, const std::string& where, const std::string& fi
   if (!value.is_number()) fail(where, field + ": expected a number, found " + a_type_name(value));
   const double result = value.get<double>();
   // The parser already refuses literals beyond the double range; this guards integers that
-  // nlohmann stores exactly but that could not come back as finite doubles (none today).
+  // nlohmann stores exactly but that could not come back as finite doubles (none does).
   if (!std::isfinite(result)) fail(where, field + ": not a finite number");
   return result;
 }
