@@ -22,6 +22,7 @@
 #include "common_factor.hpp"
 #include "extension.hpp"
 #include "isolation.hpp"
+#include "ratio_range.hpp"
 #include "stationary_points.hpp"
 
 #include "bezinv/nurbs.hpp"
@@ -119,6 +120,14 @@ PlanData make_plan_data(const Curve& given) {
   double lo[2] = {pts[0][0], pts[0][1]}, hi[2] = {lo[0], lo[1]};
   for (const auto& p : pts)
     for (int k = 0; k < 2; ++k) { lo[k] = std::min(lo[k], p[k]); hi[k] = std::max(hi[k], p[k]); }
+  // Where the ratios do not bound the curve (a zero or negative denominator coefficient: a
+  // "control point" at infinity or on the far side), the extent of the segment itself, from pieces
+  // on which they do (ratio_range.hpp).
+  if (!detail::ratios_bound(curve.x_num, curve.x_den) || !detail::ratios_bound(curve.y_num, curve.y_den)) {
+    const detail::RatioRange x = detail::ratio_range(curve.x_num, curve.x_den);
+    const detail::RatioRange y = detail::ratio_range(curve.y_num, curve.y_den);
+    lo[0] = x.lo; hi[0] = x.hi; lo[1] = y.lo; hi[1] = y.hi;
+  }
   // In halves, so that a box as wide as the doubles go does not overflow: the diagonal may then be
   // inf, but its half, the centre and the scale are finite.
   const double half_diagonal = std::hypot(0.5 * hi[0] - 0.5 * lo[0], 0.5 * hi[1] - 0.5 * lo[1]);

@@ -99,9 +99,8 @@ double tolerance_of(const bezinv::InversionPlan& plan, double relative_tolerance
   return std::max(relative_tolerance * data.diagonal, data.normalized_resolution * data.scale);
 }
 
-// `tolerance` is NaN where the plan has no finite diagonal (a box wider than the doubles, or a
-// rational curve with a zero denominator coefficient, whose control point is at infinity: the
-// tolerance is not defined there, see RELIABILITY.md, "Fuzzing"): only what needs no tolerance is checked.
+// `tolerance` is NaN where the plan has no finite diagonal (a curve wider than the doubles): only
+// what needs no tolerance is checked.
 void check(const PointResult& r, bool finite_point, double tolerance) {
   // A bound computed in other units than the engine's comparison, by a product or two: a few ulps.
   const double bound = tolerance * (1 + 1e-12);

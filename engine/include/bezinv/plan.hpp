@@ -31,7 +31,9 @@ class InversionPlan {
   // (the size of B is n x n).
   int degree() const;
   // Diagonal of the bounding box of the control points (input units): the on-curve tolerance is
-  // relative to it (inf for a box wider than the largest double).
+  // relative to it (inf for a box wider than the largest double). Where a denominator coefficient
+  // is zero or of the other sign, so the control points do not bound the curve, the box of the
+  // segment itself.
   double diagonal() const;
   // 2 for a plane curve, 3 for a space curve (whose points need z: invert.hpp's Point3 overloads).
   int dimension() const;

@@ -157,6 +157,17 @@ inline constexpr double kFormulaPathMaxCoordinate = 1e6;
 // once), and more above.
 inline constexpr int kFormulaPathMaxDegree = 20;
 
+// ---- A curve's size ----------------------------------------------------------------------------
+
+// Where a curve's ratios num_i / den_i do not bound it (a zero or negative denominator coefficient),
+// its size comes from pieces halved until they do (engine/src/ratio_range.hpp): at least this many
+// halvings deep (16 pieces: their ratios then exceed the curve by a few percent of its extent)...
+inline constexpr int kRatioRangeMinHalvings = 4;
+// ...and at most this many (pieces 1e-9 wide) and this many pieces in all, so a denominator within
+// rounding of a root, or ratios that overflow, cost a bounded time.
+inline constexpr int kRatioRangeHalvings = 30;
+inline constexpr int kRatioRangePieces = 4096;
+
 // ---- Curves refused ----------------------------------------------------------------------------
 
 // A denominator has a root on [0, 1] (validate() refuses the curve) when subdivision cannot bound

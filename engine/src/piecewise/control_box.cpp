@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "bezinv/nurbs.hpp"
+#include "ratio_range.hpp"
 
 namespace bezinv::detail {
 namespace {
@@ -39,6 +40,15 @@ ControlBox control_box(const Curve& curve) {
     return box;
   }
   const bool space = curve.dimension() == 3;
+  if (curve.kind != CurveKind::nurbs &&
+      (!ratios_bound(curve.x_num, curve.x_den) || !ratios_bound(curve.y_num, curve.y_den) ||
+       (space && !ratios_bound(curve.z_num, curve.z_den)))) {
+    // Ratios that do not bound the curve (a zero or negative denominator coefficient): the extent
+    // of the segment itself, from pieces on which they do (ratio_range.hpp).
+    const RatioRange x = ratio_range(curve.x_num, curve.x_den), y = ratio_range(curve.y_num, curve.y_den);
+    const RatioRange z = space ? ratio_range(curve.z_num, curve.z_den) : RatioRange{0.0, 0.0};
+    return {{x.lo, y.lo, z.lo}, {x.hi, y.hi, z.hi}};
+  }
   for (std::size_t i = 0; i < curve.x_num.size(); ++i)
     if (curve.x_den[i] != 0.0 && curve.y_den[i] != 0.0 && (!space || curve.z_den[i] != 0.0))
       include(box, {curve.x_num[i] / curve.x_den[i], curve.y_num[i] / curve.y_den[i],

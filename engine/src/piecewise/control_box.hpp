@@ -1,7 +1,7 @@
 #pragma once
 // The bounding box of a curve's control points, which sets its size (the on-curve tolerance is
-// relative to its diagonal): as the plan takes it for a Bezier-form curve (num_i / den_i where
-// the denominator is not 0, and the two ends), the control points of a nurbs curve, the union of
+// relative to its diagonal): as the plan takes it for a Bezier-form curve (num_i / den_i and the
+// two ends; the segment's extent where those ratios do not bound it), the control points of a nurbs curve, the union of
 // a composite's curves' boxes. z is 0 for a plane curve.
 #include <array>
 

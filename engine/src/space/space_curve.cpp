@@ -9,6 +9,7 @@
 #include "plan_data.hpp"
 #include "bezinv/tolerances.hpp"
 #include "quote.hpp"
+#include "ratio_range.hpp"
 
 namespace bezinv::detail {
 namespace {
@@ -133,6 +134,15 @@ SpaceData make_space_data(const Curve& curve) {
       lo[k] = std::min(lo[k], x);
       hi[k] = std::max(hi[k], x);
     }
+  // Where the ratios do not bound the curve (a zero or negative denominator coefficient), the
+  // extent of the segment itself, from pieces on which they do (as the plane plan).
+  if (!ratios_bound(curve.x_num, curve.x_den) || !ratios_bound(curve.y_num, curve.y_den) ||
+      !ratios_bound(curve.z_num, curve.z_den))
+    for (int k = 0; k < 3; ++k) {
+      const RatioRange range = ratio_range(*nums[k], *dens[k]);
+      lo[k] = range.lo;
+      hi[k] = range.hi;
+    }
   // hypot: the squares of a box wider than ~1e154 overflow, which left the curve unscaled.
   const double half_diagonal = std::hypot(0.5 * hi[0] - 0.5 * lo[0], 0.5 * hi[1] - 0.5 * lo[1], 0.5 * hi[2] - 0.5 * lo[2]);
   space.diagonal = 2 * half_diagonal;
@@ -154,6 +164,8 @@ SpaceData make_space_data(const Curve& curve) {
     std::array<double, 3> d;
     for (int k = 0; k < 3; ++k)
       d[k] = (*nums[k])[i] / (*dens[k])[i] * space.inverse_scale - space.centre[k] * space.inverse_scale;
+    // A ratio at infinity (a zero denominator coefficient) has no place among the points.
+    if (!std::isfinite(d[0]) || !std::isfinite(d[1]) || !std::isfinite(d[2])) continue;
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) covariance[r][c] += d[r] * d[c];
   }
