@@ -322,6 +322,40 @@ TEST(NurbsCurve, AnswersDoNotDependOnThreadsOrOverload) {
   }
 }
 
+// A curve of many spans, where each point is put only to the spans near it: points on it are found
+// at their parameter, points near and far from it answered at their nearest point (the test's own
+// search over the whole curve: no span that holds a nearer point was passed over).
+TEST(NurbsCurve, ManySpansNearAndFarPoints) {
+  Nurbs n{3, {0, 0, 0, 0}, {}, {}};
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int i = 0; i < 23; ++i) {
+    n.points.push_back({static_cast<double>(i), 2 * std::sin(0.7 * i) + 0.5 * unit(rng), 0});
+    n.weights.push_back(0.5 + unit(rng));
+  }
+  for (int k = 1; k <= 19; ++k) n.knots.push_back(k);
+  for (int k = 0; k < 4; ++k) n.knots.push_back(20);
+  const InversionPlan plan = make_plan(engine_nurbs(n));
+  for (int i = 0; i < 60; ++i) {
+    const double u = 20 * unit(rng);
+    const PointResult r = invert_at(plan, nurbs_point(n, u));
+    EXPECT_EQ(r.status, Status::ok) << "u = " << u;
+    EXPECT_NEAR(r.t, u, 1e-9 * 20) << "u = " << u;
+  }
+  std::uniform_real_distribution<double> x(-10, 32), y(-8, 8), near(-0.05, 0.05);
+  for (int i = 0; i < 30; ++i) {
+    const Vec3 on = nurbs_point(n, 20 * unit(rng));
+    for (const Vec3& q : {Vec3{x(rng), y(rng), 0}, Vec3{on[0] + near(rng), on[1] + near(rng), 0}}) {
+      const PointResult r = invert_at(plan, q);
+      const double expected = nearest_distance(n, q);
+      if (expected > 1e-6 * plan.diagonal() * 1.01) {
+        EXPECT_EQ(r.status, Status::off_curve) << q[0] << ", " << q[1];
+        EXPECT_NEAR(r.residual, expected, 1e-9 * (1 + expected)) << q[0] << ", " << q[1];
+      }
+    }
+  }
+}
+
 // A cubic Bezier from (0, 0) to (3, 0), a quadratic NURBS on [2, 5] from (3, 0) to (7, 0), a
 // quarter circle about (7, 1) to (8, 1): t = 0..1, 1..2, 2..3.
 Curve three_part_composite() {

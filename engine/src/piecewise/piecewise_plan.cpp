@@ -1,5 +1,6 @@
 #include "piecewise/piecewise_plan.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -20,6 +21,14 @@ double PiecewiseData::distance(std::size_t k, double s, const std::array<double,
   return std::hypot(p[0] - point[0], p[1] - point[1], p[2] - point[2]);
 }
 
+double PiecewiseData::box_distance(std::size_t k, const std::array<double, 3>& point) const {
+  const ControlBox& box = spans[k].box;
+  double outside[3];
+  for (int i = 0; i < 3; ++i) outside[i] = std::max({box.lo[i] - point[i], point[i] - box.hi[i], 0.0});
+  const double d = std::hypot(outside[0], outside[1], outside[2]);
+  return std::isfinite(d) ? d : std::numeric_limits<double>::quiet_NaN();
+}
+
 PiecewiseData make_piecewise_data(const Curve& curve) {
   validate(curve);
   PiecewiseData data;
@@ -34,6 +43,7 @@ PiecewiseData make_piecewise_data(const Curve& curve) {
     s.plan = make_plan(span.curve);
     s.start = span.start;
     s.end = span.end;
+    s.box = control_box(span.curve);
     const double d = s.plan.diagonal();
     if (d > 0 && std::isfinite(d) && std::isfinite(data.diagonal)) s.tolerance_factor = data.diagonal / d;
     data.spans.push_back(std::move(s));

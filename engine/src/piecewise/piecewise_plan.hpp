@@ -6,6 +6,7 @@
 
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
+#include "piecewise/control_box.hpp"
 
 namespace bezinv::detail {
 
@@ -15,6 +16,9 @@ struct PiecewiseSpan {
   // The whole curve's diagonal over the span's: the span's relative tolerance is the curve's times
   // this, so every span is judged by the same distance (1 where the span's diagonal is 0 or inf).
   double tolerance_factor = 1;
+  // The box of the span's control points, which holds its segment (positive weights; ratios that do
+  // not bound a composite's part are replaced by its extent, control_box.hpp).
+  ControlBox box{};
 };
 
 struct PiecewiseData {
@@ -31,6 +35,9 @@ struct PiecewiseData {
   double parameter(std::size_t k, double s) const;
   // |P(s) - point| on span k, input units.
   double distance(std::size_t k, double s, const std::array<double, 3>& point) const;
+  // The distance from `point` to span k's box: no point of the span's segment is nearer (NaN where
+  // the box is not finite).
+  double box_distance(std::size_t k, const std::array<double, 3>& point) const;
 };
 
 // Throws CurveError for a curve that fails validate().
