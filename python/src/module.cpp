@@ -4,6 +4,7 @@
 // reader -> invert_stream -> writer path as `bezinv invert`, so the answers are the command's,
 // byte for byte.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -16,6 +17,11 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "bezinv/curve.hpp"
 #include "bezinv/invert.hpp"
@@ -80,34 +86,69 @@ int curve_named(const std::vector<bezinv::Curve>& curves, const std::string& sel
   return index < curves.size() ? static_cast<int>(index) : -1;
 }
 
-// Rows per engine call on the in-place path: a chunk's results (56 bytes a row, 3.5 MB) are still
-// in cache when they are packed (BENCHMARKS.md "Python": 2^16 was quicker than 2^20 and 2^22).
-constexpr std::size_t kInPlaceChunkPoints = std::size_t{1} << 16;
+// Rows per task on the in-place path: a task inverts its rows on one thread and packs them while
+// their results (56 bytes a row, 0.9 MB) are still in its core's cache. Packing inside the
+// parallel tasks, not between engine calls, keeps the Python call at the engine's speed
+// (BENCHMARKS.md "Python").
+constexpr std::size_t kInPlaceChunkPoints = std::size_t{1} << 14;
 
 // The common case, read in place: planned curves, one plane curve for every row, every coordinate
 // finite. No row then needs the reader's checks, and the engine reads the numpy memory as its
 // Points a chunk at a time, into a chunk of results packed as the writer packs them. The answers
-// are the general path's (the engine's do not depend on how the rows are handed to it). False
-// (nothing written) when the case is not this one.
+// are the general path's (the engine's do not depend on how the rows are handed to it, nor on the
+// thread count). False when the case is not this one (records partly written then: the caller's
+// path writes them all).
 bool invert_in_place(const Curves& curves, const bezinv::PointArray& array, std::span<char> records,
                      const bezinv::InvertOptions& options) {
   static_assert(sizeof(bezinv::Point) == 2 * sizeof(double), "a row of (N, 2) float64 is a Point");
   if (curves.plans.empty() || array.width != 2 || array.curve.empty()) return false;
   const int curve = curve_named(curves.curves, array.curve);
   if (curve < 0 || curves.plans[static_cast<std::size_t>(curve)].dimension() != 2) return false;
-  for (const double v : array.coordinates)
-    if (!std::isfinite(v)) return false;
   const std::size_t rows = array.coordinates.size() / 2;
   const auto* points = reinterpret_cast<const bezinv::Point*>(array.coordinates.data());
-  const auto writer = bezinv::open_results(records);
-  std::vector<bezinv::PointResult> results(std::min(rows, kInPlaceChunkPoints));
-  for (std::size_t begin = 0; begin < rows; begin += results.size()) {
-    const std::size_t count = std::min(results.size(), rows - begin);
-    const std::span<bezinv::PointResult> chunk = std::span(results).first(count);
-    bezinv::invert(curves.plans[static_cast<std::size_t>(curve)], std::span(points + begin, count), chunk, options);
-    writer->write(chunk);
+  const bezinv::InversionPlan& plan = curves.plans[static_cast<std::size_t>(curve)];
+  bezinv::InvertOptions one_thread = options;
+  one_thread.threads = 1;
+  // Each chunk checks its own coordinates (in its task, not in a pass of its own over them all): a
+  // non-finite one anywhere sends the whole call to the reader's path, which answers it
+  // invalid_input and rewrites every record.
+  std::atomic<bool> all_finite{true};
+  auto finite = [](std::span<const double> values) {
+    bool ok = true;
+    for (const double v : values) ok &= std::isfinite(v);
+    return ok;
+  };
+  tbb::enumerable_thread_specific<std::vector<bezinv::PointResult>> buffers;
+  auto invert_chunks = [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<bezinv::PointResult>& results = buffers.local();
+    for (std::size_t chunk = range.begin(); chunk != range.end(); ++chunk) {
+      const std::size_t begin = chunk * kInPlaceChunkPoints;
+      const std::size_t count = std::min(kInPlaceChunkPoints, rows - begin);
+      if (!all_finite.load(std::memory_order_relaxed) || !finite(array.coordinates.subspan(2 * begin, 2 * count))) {
+        all_finite.store(false, std::memory_order_relaxed);
+        return;
+      }
+      results.resize(count);
+      bezinv::invert(plan, std::span(points + begin, count), results, one_thread);
+      bezinv::open_results(records.subspan(begin * bezinv::kResultRecordBytes, count * bezinv::kResultRecordBytes))
+          ->write(results);
+    }
+  };
+  const std::size_t chunks = (rows + kInPlaceChunkPoints - 1) / kInPlaceChunkPoints;
+  if (chunks == 1) {  // too few rows to share out by chunks: the engine shares them out by batches
+    if (!finite(array.coordinates)) return false;
+    std::vector<bezinv::PointResult> results(rows);
+    bezinv::invert(plan, std::span(points, rows), results, options);
+    bezinv::open_results(records)->write(results);
+  } else if (options.threads == 1) {
+    invert_chunks(tbb::blocked_range<std::size_t>(0, chunks));
+  } else if (options.threads == 0) {  // every core: TBB's own arena
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), invert_chunks);
+  } else {
+    tbb::task_arena arena(options.threads);
+    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), invert_chunks); });
   }
-  return true;
+  return all_finite.load();
 }
 
 // Inverts `points` (C-contiguous float64, rows x width) into `out` (OUT.npy records, rows of
