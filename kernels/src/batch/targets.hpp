@@ -9,10 +9,10 @@
 #ifndef HWY_COMPILE_ALL_ATTAINABLE
 #define HWY_COMPILE_ALL_ATTAINABLE
 #endif
-// BEZINV_KERNEL_ONLY_TARGET (CMake: BEZINV_KERNEL_TARGETS=native, the sanitizer tree of
-// scripts/test.sh): the portable baseline and this Highway target bit alone (0: the baseline
-// alone), so a tree that is only tested on the machine that builds it compiles each kernel twice
-// instead of once per instruction set.
+// BEZINV_KERNEL_ONLY_TARGET (CMake: BEZINV_KERNEL_TARGETS=native, the trees of scripts/test.sh):
+// the portable baseline and these Highway target bits alone (those this machine runs; 0: the
+// baseline alone), so a tree that is only tested on the machine that builds it compiles no kernel
+// it cannot run (on an AVX2 machine, twice instead of four times).
 #ifndef HWY_DISABLED_TARGETS
 #ifdef BEZINV_KERNEL_ONLY_TARGET
 #define HWY_DISABLED_TARGETS \
