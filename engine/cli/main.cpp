@@ -1,5 +1,6 @@
 // The `bezinv` command: argument parsing, then the data flow of docs/README.md:
 // CURVES.json -> curves -> plans, then POINTS (.csv/.npy) -> invert -> OUT (.csv/.npy) a chunk at a time.
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <charconv>
@@ -63,6 +64,7 @@ struct InvertArguments {
   bool verbose = false;
   bezinv::CurveSelection selection;
   std::size_t chunk_points = bezinv::kDefaultChunkPoints;
+  std::vector<std::string> columns;  // optional output columns: "point"
 };
 
 // One self-overwriting line on stderr: points done, how far through the input, rate. Only when
@@ -200,7 +202,9 @@ int run_invert(const InvertArguments& arguments) {
   options.threads = arguments.threads;
 
   const auto reader = bezinv::open_points(arguments.points_path, curves, arguments.selection);
-  const auto writer = bezinv::open_results(arguments.out_path, arguments.threads);
+  bezinv::ResultColumns columns;
+  columns.point = std::find(arguments.columns.begin(), arguments.columns.end(), "point") != arguments.columns.end();
+  const auto writer = bezinv::open_results(arguments.out_path, arguments.threads, columns);
   bezinv::StreamSummary summary;
   {
     ProgressLine progress;
@@ -288,6 +292,11 @@ int main(int argc, char** argv) {
   invert->add_option("--rows", invert_rows,
                      ".npy points: only rows A to B (0-based, B excluded; B past the end: to the end), for sharing "
                      "one file over machines (bezinv merge joins the parts)");
+  invert->add_option("--columns", invert_arguments.columns,
+                     "Optional output columns after the others: point (x_t,y_t,z_t: the curve's point at t; z_t 0 "
+                     "for a plane curve, nan where t is nan)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"point"}));
   invert->add_option("--off-curve", invert_arguments.off_curve,
                      "An off_curve row's t: nearest (the nearest point of the segment) or projection (the "
                      "inversion formula's projection N/M of the point, path projection, where the formula is valid)")

@@ -80,10 +80,18 @@ int run_merge(std::uint64_t rows, std::vector<MergePart> parts, const std::strin
   }
   if (next != rows)
     throw InputError("rows " + std::to_string(next) + " to " + std::to_string(rows) + " are in no part");
-  const std::unique_ptr<ResultWriter> writer = open_results(out_path);
+  // The parts' optional columns are kept: all must have the same ones.
+  const ResultColumns columns = readers.empty() ? ResultColumns{} : readers.front()->columns();
+  for (std::size_t i = 1; i < readers.size(); ++i)
+    if (readers[i]->columns().point != columns.point)
+      throw InputError(parts[i].path + ": " + (columns.point ? "has no" : "has the") + " point columns (x_t,y_t,z_t), but " +
+                       parts.front().path + (columns.point ? " has" : " has not") + ": make every part with the same --columns");
+  const std::unique_ptr<ResultWriter> writer = open_results(out_path, 0, columns);
   std::vector<PointResult> chunk(std::size_t{1} << 16);
+  std::vector<Point3> at(chunk.size());
   for (const auto& reader : readers)
-    while (const std::size_t count = reader->read(chunk)) writer->write(std::span<const PointResult>(chunk.data(), count));
+    while (const std::size_t count = reader->read(chunk, at))
+      writer->write_with_points(std::span<const PointResult>(chunk.data(), count), std::span<const Point3>(at.data(), count));
   writer->commit();
   return 0;
 }

@@ -22,7 +22,8 @@ namespace {
 
 using detail::OutputTarget;
 
-constexpr std::string_view kHeader = "t,status,residual,t2,sigma_min,sigma_next,path,reason\n";
+constexpr std::string_view kHeader = "t,status,residual,t2,sigma_min,sigma_next,path,reason";
+constexpr std::string_view kPointHeader = ",x_t,y_t,z_t";
 
 // Rows formatted by one task: about 0.5 MB of text, enough to amortize the task, small enough
 // that a group of them in flight stays in the tens of MB.
@@ -76,26 +77,40 @@ void append_row(std::string& out, const PointResult& result) {
   out += to_string(result.path);
   out += ',';
   append_text_field(out, result.reason);
-  out += '\n';
+}
+
+void append_point(std::string& out, const Point3& at) {
+  for (const double v : {at.x, at.y, at.z}) {
+    out += ',';
+    append_number(out, v);
+  }
 }
 
 class CsvResultWriter final : public ResultWriter {
  public:
-  CsvResultWriter(const std::string& path, int threads)
-      : output_(path, false), arena_(threads > 0 ? threads : tbb::task_arena::automatic), blocks_(kBlocksPerGroup) {
-    output_.write(kHeader);
+  CsvResultWriter(const std::string& path, int threads, ResultColumns columns)
+      : output_(path, false), arena_(threads > 0 ? threads : tbb::task_arena::automatic), blocks_(kBlocksPerGroup),
+        columns_(columns) {
+    output_.write(std::string(kHeader) + (columns.point ? std::string(kPointHeader) : "") + "\n");
   }
 
+  ResultColumns columns() const override { return columns_; }
+  void write(std::span<const PointResult> results) override { write_with_points(results, {}); }
+
   // Blocks of rows are formatted in parallel, a group at a time, and written in order.
-  void write(std::span<const PointResult> results) override {
+  void write_with_points(std::span<const PointResult> results, std::span<const Point3> at) override {
     for (std::size_t group = 0; group < results.size(); group += kRowsPerBlock * kBlocksPerGroup) {
       const std::span<const PointResult> rows = results.subspan(group, std::min(results.size() - group, kRowsPerBlock * kBlocksPerGroup));
       const std::size_t blocks = (rows.size() + kRowsPerBlock - 1) / kRowsPerBlock;
       const auto format = [&](std::size_t b) {
         std::string& text = blocks_[b];
         text.clear();
-        for (const PointResult& result : rows.subspan(b * kRowsPerBlock, std::min(kRowsPerBlock, rows.size() - b * kRowsPerBlock)))
-          append_row(text, result);
+        const std::size_t first = group + b * kRowsPerBlock, end = group + std::min(rows.size(), (b + 1) * kRowsPerBlock);
+        for (std::size_t i = first; i < end; ++i) {
+          append_row(text, results[i]);
+          if (columns_.point) append_point(text, detail::point_or_nan(at, i));
+          text += '\n';
+        }
       };
       if (blocks == 1) format(0);
       else arena_.execute([&] { tbb::parallel_for(std::size_t{0}, blocks, format); });
@@ -109,6 +124,7 @@ class CsvResultWriter final : public ResultWriter {
   OutputTarget output_;
   tbb::task_arena arena_;
   std::vector<std::string> blocks_;
+  ResultColumns columns_;
 };
 
 using detail::kRecordBytes;
@@ -116,30 +132,38 @@ using detail::kResultDescr;
 
 class NpyResultWriter final : public ResultWriter {
  public:
-  explicit NpyResultWriter(const std::string& path) : output_(path, true) {
+  NpyResultWriter(const std::string& path, ResultColumns columns)
+      : output_(path, true), columns_(columns), descr_(detail::result_descr_for(columns)),
+        record_bytes_(detail::record_bytes_for(columns)) {
     // The count is not known yet (a CSV input is not counted ahead): a placeholder of the same
     // length, rewritten at commit.
-    output_.write(detail::npy_preamble(kResultDescr, 0));
+    output_.write(detail::npy_preamble(descr_, 0));
   }
 
-  void write(std::span<const PointResult> results) override {
-    records_.resize(results.size() * kRecordBytes);
+  ResultColumns columns() const override { return columns_; }
+  void write(std::span<const PointResult> results) override { write_with_points(results, {}); }
+
+  void write_with_points(std::span<const PointResult> results, std::span<const Point3> at) override {
+    records_.resize(results.size() * record_bytes_);
     char* record = records_.data();
-    for (const PointResult& result : results) {
-      detail::pack_record(record, result);
-      record += kRecordBytes;
+    for (std::size_t i = 0; i < results.size(); ++i, record += record_bytes_) {
+      detail::pack_record(record, results[i]);
+      if (columns_.point) detail::pack_point(record, detail::point_or_nan(at, i));
     }
     output_.write(std::string_view(records_.data(), records_.size()));
     rows_ += results.size();
   }
 
   void commit() override {
-    output_.rewrite(0, detail::npy_preamble(kResultDescr, rows_));
+    output_.rewrite(0, detail::npy_preamble(descr_, rows_));
     output_.commit();
   }
 
  private:
   OutputTarget output_;
+  ResultColumns columns_;
+  std::string_view descr_;
+  std::size_t record_bytes_;
   std::vector<char> records_;
   std::uint64_t rows_ = 0;
 };
@@ -178,13 +202,13 @@ std::unique_ptr<ResultWriter> open_results(std::span<char> records, std::span<co
   return std::make_unique<MemoryResultWriter>(records, reasons);
 }
 
-std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads) {
-  if (detail::has_npy_extension(path)) return std::make_unique<NpyResultWriter>(path);
-  return std::make_unique<CsvResultWriter>(path, threads);
+std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads, ResultColumns columns) {
+  if (detail::has_npy_extension(path)) return std::make_unique<NpyResultWriter>(path, columns);
+  return std::make_unique<CsvResultWriter>(path, threads, columns);
 }
 
 void write_results_csv(const std::string& path, std::span<const PointResult> results) {
-  CsvResultWriter writer(path, 0);
+  CsvResultWriter writer(path, 0, {});
   writer.write(results);
   writer.commit();
 }

@@ -23,9 +23,12 @@ class NpyResultReader final : public ResultReader {
     if (file_ == nullptr) throw InputError(path + ": cannot read: " + std::strerror(errno));
     try {
       const detail::NpyHeader header = detail::read_npy_header(file_, path);
-      if (header.descr != detail::kResultDescr)
+      if (header.descr == detail::kResultWithPointDescr)
+        columns_.point = true;
+      else if (header.descr != detail::kResultDescr)
         throw InputError(path + ": header: dtype " + detail::escaped_excerpt(header.descr) +
                          " is not that of bezinv's OUT.npy");
+      record_bytes_ = detail::record_bytes_for(columns_);
       if (header.shape.size() != 1) throw InputError(path + ": header: shape " + detail::shape_text(header.shape) + " is not (N,)");
       rows_ = header.shape[0];
     } catch (...) {
@@ -38,14 +41,21 @@ class NpyResultReader final : public ResultReader {
   NpyResultReader& operator=(const NpyResultReader&) = delete;
 
   std::uint64_t rows() const override { return rows_; }
+  ResultColumns columns() const override { return columns_; }
 
-  std::size_t read(std::span<PointResult> results) override {
-    const std::size_t count = static_cast<std::size_t>(std::min<std::uint64_t>(results.size(), rows_ - done_));
+  std::size_t read(std::span<PointResult> results, std::span<Point3> at) override {
+    std::size_t count = static_cast<std::size_t>(std::min<std::uint64_t>(results.size(), rows_ - done_));
+    if (!at.empty()) count = std::min(count, at.size());
     if (count == 0) return 0;
-    records_.resize(count * detail::kRecordBytes);
+    records_.resize(count * record_bytes_);
     detail::read_npy_data(file_, path_, records_.data(), records_.size());
     for (std::size_t i = 0; i < count; ++i) {
-      const char* record = records_.data() + i * detail::kRecordBytes;
+      const char* record = records_.data() + i * record_bytes_;
+      if (!at.empty()) {
+        double xyz[3] = {PointResult::nan, PointResult::nan, PointResult::nan};
+        if (columns_.point) std::memcpy(xyz, record + detail::kRecordBytes, sizeof xyz);
+        at[i] = Point3{xyz[0], xyz[1], xyz[2]};
+      }
       double numbers[5];
       std::memcpy(numbers, record, sizeof numbers);
       PointResult& r = results[i];
@@ -66,6 +76,8 @@ class NpyResultReader final : public ResultReader {
   std::string path_;
   std::FILE* file_ = nullptr;
   std::uint64_t rows_ = 0, done_ = 0;
+  ResultColumns columns_;
+  std::size_t record_bytes_ = detail::kRecordBytes;
   std::vector<char> records_;
 };
 

@@ -2,6 +2,7 @@
 // chunk's rows, points and results, whatever the size of the input, and never more than the
 // input needs.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -39,6 +40,14 @@ std::size_t read_chunk(PointReader& reader, std::vector<PointRow>& rows, std::si
   }
 }
 
+// P(t) on the row's curve (ResultColumns::point): nan for a rejected row or a nan t.
+Point3 point_at(std::span<const InversionPlan> plans, int curve, double t) {
+  constexpr double nan = PointResult::nan;
+  if (curve < 0 || !std::isfinite(t)) return {nan, nan, nan};
+  const auto p = plans[static_cast<std::size_t>(curve)].curve().point3(t);
+  return {p[0], p[1], p[2]};
+}
+
 // The loop of both invert_stream overloads; prepare(curve_of) is called for each chunk before it
 // is inverted, with the chunk's curve indices.
 template <class Prepare>
@@ -51,6 +60,8 @@ StreamSummary stream(PointReader& reader, ResultWriter& writer, std::span<const 
   std::vector<Point> points;
   std::vector<double> z;  // the space curves' points' third coordinate
   std::vector<PointResult> results;
+  std::vector<Point3> at;  // P(t) of each row, when the writer has the point columns
+  const bool want_points = writer.columns().point;
   StreamSummary summary;
   while (const std::size_t count = read_chunk(reader, rows, chunk_points)) {
     curve_of.resize(count);
@@ -85,7 +96,13 @@ StreamSummary stream(PointReader& reader, ResultWriter& writer, std::span<const 
     const std::span<const PointResult> answered = std::span(results).first(count);
     for (const PointResult& result : answered) ++summary.by_status[static_cast<std::size_t>(result.status)];
     summary.points += count;
-    writer.write(answered);
+    if (want_points) {
+      at.resize(count);
+      for (std::size_t i = 0; i < count; ++i) at[i] = point_at(plans, curve_of[i], answered[i].t);
+      writer.write_with_points(answered, at);
+    } else {
+      writer.write(answered);
+    }
   }
   return summary;
 }

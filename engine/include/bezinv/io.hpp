@@ -128,10 +128,26 @@ std::unique_ptr<PointReader> open_points(const PointArray& points, const std::ve
 // links, copies into it in place. Destroyed without commit() (an exception on the way), the
 // writer removes the temporary and leaves the target as it was. A character device or FIFO is
 // written straight through. Failures throw InputError "<path>: cannot write: <reason>".
+// Optional columns of OUT after the fixed ones (`bezinv invert --columns point`).
+struct ResultColumns {
+  // x_t, y_t, z_t: P(t), the curve's point at the row's t (in the curve's own parameter: a NURBS
+  // curve's knots, a composite's segment + local t; on the extension where t is outside the
+  // segment); z_t is 0 for a plane curve; all three nan where t is nan.
+  bool point = false;
+};
+
 class ResultWriter {
  public:
   virtual ~ResultWriter() = default;
+  // The optional columns it writes; with `point`, give each row's P(t) to write_with_points
+  // (write alone then writes them nan).
+  virtual ResultColumns columns() const { return {}; }
   virtual void write(std::span<const PointResult> results) = 0;
+  // at[i] is P(t) of results[i] (as long as results, or empty: nan); columns it does not write are ignored.
+  virtual void write_with_points(std::span<const PointResult> results, std::span<const Point3> at) {
+    (void)at;
+    write(results);
+  }
   virtual void commit() = 0;
 };
 
@@ -139,12 +155,15 @@ class ResultWriter {
 // reason; numbers in the shortest form that reads back to the same double (std::to_chars, so
 // round-trip precision), `nan` when absent. `threads` formats CSV rows in parallel (0: all cores).
 // The .npy header is written with room for any row count and rewritten with the count at commit.
-std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads = 0);
+// With columns.point, CSV gains x_t,y_t,z_t after reason and the .npy record three '<f8' fields
+// of those names after path (kResultRecordBytes + kPointColumnsBytes a row).
+std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads = 0, ResultColumns columns = {});
 
 // OUT.npy's records in memory: the bytes of its data, row after row (kResultRecordBytes each, the
 // fields of kResultDescr), written from the front of `records`, which must hold every row
 // written; `reasons` (optional, as long) gets each row's reason. commit() does nothing.
 inline constexpr std::size_t kResultRecordBytes = 5 * 8 + 2;
+inline constexpr std::size_t kPointColumnsBytes = 3 * 8;
 std::string_view result_descr();  // numpy's descr of the record, as OUT.npy's header writes it
 std::unique_ptr<ResultWriter> open_results(std::span<char> records, std::span<const char*> reasons = {});
 
@@ -157,13 +176,16 @@ void remove_temporary_outputs_on_signals();
 std::uint64_t npy_rows(const std::string& path);
 
 // OUT.npy read back a chunk at a time (bezinv merge), the rows as written (reason is not stored in
-// a .npy: empty). Throws InputError naming the file for one that is not an OUT.npy.
+// a .npy: empty). Throws InputError naming the file for one that is not an OUT.npy (with or
+// without the point columns).
 class ResultReader {
  public:
   virtual ~ResultReader() = default;
   virtual std::uint64_t rows() const = 0;
-  // Fills results from the front; returns how many (0 at the end).
-  virtual std::size_t read(std::span<PointResult> results) = 0;
+  virtual ResultColumns columns() const = 0;
+  // Fills results (and, when not empty, `at` with the point columns: nan without them) from the
+  // front; returns how many (0 at the end).
+  virtual std::size_t read(std::span<PointResult> results, std::span<Point3> at = {}) = 0;
 };
 std::unique_ptr<ResultReader> open_results_npy(const std::string& path);
 
