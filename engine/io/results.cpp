@@ -171,16 +171,21 @@ class NpyResultWriter final : public ResultWriter {
 // Records into the caller's memory (a numpy array the Python module hands over).
 class MemoryResultWriter final : public ResultWriter {
  public:
-  MemoryResultWriter(std::span<char> records, std::span<const char*> reasons) : records_(records), reasons_(reasons) {}
+  MemoryResultWriter(std::span<char> records, std::span<const char*> reasons, ResultColumns columns)
+      : records_(records), reasons_(reasons), columns_(columns), record_bytes_(detail::record_bytes_for(columns)) {}
 
-  void write(std::span<const PointResult> results) override {
-    if (results.size() > (records_.size() - written_ * kRecordBytes) / kRecordBytes ||
+  ResultColumns columns() const override { return columns_; }
+  void write(std::span<const PointResult> results) override { write_with_points(results, {}); }
+
+  void write_with_points(std::span<const PointResult> results, std::span<const Point3> at) override {
+    if (results.size() > (records_.size() - written_ * record_bytes_) / record_bytes_ ||
         (!reasons_.empty() && results.size() > reasons_.size() - written_))
-      throw InputError("results: more rows than the " + std::to_string(records_.size() / kRecordBytes) +
+      throw InputError("results: more rows than the " + std::to_string(records_.size() / record_bytes_) +
                        " the output holds");
-    char* record = records_.data() + written_ * kRecordBytes;
-    for (std::size_t i = 0; i < results.size(); ++i, record += kRecordBytes) {
+    char* record = records_.data() + written_ * record_bytes_;
+    for (std::size_t i = 0; i < results.size(); ++i, record += record_bytes_) {
       detail::pack_record(record, results[i]);
+      if (columns_.point) detail::pack_point(record, detail::point_or_nan(at, i));
       if (!reasons_.empty()) reasons_[written_ + i] = results[i].reason;
     }
     written_ += results.size();
@@ -191,15 +196,18 @@ class MemoryResultWriter final : public ResultWriter {
  private:
   std::span<char> records_;
   std::span<const char*> reasons_;
+  ResultColumns columns_;
+  std::size_t record_bytes_;
   std::size_t written_ = 0;
 };
 
 }  // namespace
 
-std::string_view result_descr() { return kResultDescr; }
+std::string_view result_descr(ResultColumns columns) { return detail::result_descr_for(columns); }
 
-std::unique_ptr<ResultWriter> open_results(std::span<char> records, std::span<const char*> reasons) {
-  return std::make_unique<MemoryResultWriter>(records, reasons);
+std::unique_ptr<ResultWriter> open_results(std::span<char> records, std::span<const char*> reasons,
+                                           ResultColumns columns) {
+  return std::make_unique<MemoryResultWriter>(records, reasons, columns);
 }
 
 std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads, ResultColumns columns) {

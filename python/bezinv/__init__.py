@@ -19,7 +19,7 @@ from . import _bezinv
 
 __all__ = [
     "Curve", "Curves", "load_curves", "plan", "invert", "status_name", "path_name",
-    "RESULT_DTYPE", "STATUS_NAMES", "PATH_NAMES", "DEFAULT_TOLERANCE", "kernel",
+    "RESULT_DTYPE", "RESULT_POINT_DTYPE", "STATUS_NAMES", "PATH_NAMES", "DEFAULT_TOLERANCE", "kernel",
     "stress", "OK", "OUTSIDE_SEGMENT", "DOUBLE_POINT", "OFF_CURVE", "INVALID_INPUT", "FAILED",
 ]
 
@@ -29,9 +29,13 @@ Curves = _bezinv.Curves
 # OUT.npy's record: packed, as numpy makes a dtype from a list (42 bytes a row).
 RESULT_DTYPE = np.dtype([("t", "<f8"), ("residual", "<f8"), ("t2", "<f8"), ("sigma_min", "<f8"),
                          ("sigma_next", "<f8"), ("status", "u1"), ("path", "u1")])
-if str(RESULT_DTYPE.descr) != _bezinv.result_descr():
-    # The engine writes the records; a layout that differs from what numpy reads would be garbage.
-    raise ImportError("bezinv: the engine's result record %s is not %s" % (_bezinv.result_descr(), RESULT_DTYPE.descr))
+# With columns=("point",) (--columns point): x_t, y_t, z_t, the curve's point at t, after path (66 bytes).
+RESULT_POINT_DTYPE = np.dtype(RESULT_DTYPE.descr + [("x_t", "<f8"), ("y_t", "<f8"), ("z_t", "<f8")])
+for _dtype, _point in ((RESULT_DTYPE, False), (RESULT_POINT_DTYPE, True)):
+    if str(_dtype.descr) != _bezinv.result_descr(_point):
+        # The engine writes the records; a layout that differs from what numpy reads would be garbage.
+        raise ImportError("bezinv: the engine's result record %s is not %s" % (_bezinv.result_descr(_point), _dtype.descr))
+_COLUMNS = ("point",)
 
 STATUS_NAMES = tuple(_bezinv.status_names())  # the codes of the `status` field
 PATH_NAMES = tuple(_bezinv.path_names())      # the codes of the `path` field
@@ -128,7 +132,7 @@ def _index_array(curve_index, rows):
 
 
 def invert(plans, points, curve=None, curve_index=None, tol=DEFAULT_TOLERANCE, refine=True, fast_path=True,
-           algebraic="bezout", off_curve="nearest", threads=0, reasons=False, out=None):
+           algebraic="bezout", off_curve="nearest", threads=0, reasons=False, out=None, columns=()):
     """The parameter of every point, as `bezinv invert` gives it.
 
     plans       plan(curves), or curves as load_curves takes them (plans are then built for the
@@ -146,6 +150,9 @@ def invert(plans, points, curve=None, curve_index=None, tol=DEFAULT_TOLERANCE, r
     reasons     True: also return a list of each row's reason (why invalid_input or failed)
     out         an array of RESULT_DTYPE, shape (N,), C-contiguous, to write the results into
                 (reused across calls, it saves allocating and first touching the memory)
+    columns     optional fields after the others (--columns): ("point",) adds x_t, y_t, z_t, the
+                curve's point at t (z_t 0 on a plane curve, nan where t is nan); the results
+                (and out) are then of RESULT_POINT_DTYPE
 
     Returns a structured array of RESULT_DTYPE (OUT.npy's fields: t, residual, t2, sigma_min,
     sigma_next, status, path), one row per point in order; with reasons, (results, reasons).
@@ -177,14 +184,25 @@ def invert(plans, points, curve=None, curve_index=None, tol=DEFAULT_TOLERANCE, r
         raise ValueError("algebraic: %r is not one of %s" % (algebraic, ", ".join(_ALGEBRAIC)))
     if off_curve not in _OFF_CURVE:
         raise ValueError("off_curve: %r is not one of %s" % (off_curve, ", ".join(_OFF_CURVE)))
+    if isinstance(columns, str):
+        columns = (columns,)
+    try:
+        columns = tuple(columns)
+    except TypeError:
+        raise TypeError("columns: expected a list of names, got %s" % type(columns).__name__) from None
+    for name in columns:
+        if name not in _COLUMNS:
+            raise ValueError("columns: %r is not one of %s" % (name, ", ".join(_COLUMNS)))
+    point = "point" in columns
+    dtype, dtype_name = (RESULT_POINT_DTYPE, "RESULT_POINT_DTYPE") if point else (RESULT_DTYPE, "RESULT_DTYPE")
     if out is None:
-        out = np.empty(rows, dtype=RESULT_DTYPE)
-    elif not isinstance(out, np.ndarray) or out.dtype != RESULT_DTYPE or out.shape != (rows,):
-        raise ValueError("out: expected an array of bezinv.RESULT_DTYPE and shape (%d,)" % rows)
+        out = np.empty(rows, dtype=dtype)
+    elif not isinstance(out, np.ndarray) or out.dtype != dtype or out.shape != (rows,):
+        raise ValueError("out: expected an array of bezinv.%s and shape (%d,)" % (dtype_name, rows))
     elif not (out.flags["C_CONTIGUOUS"] and out.flags["WRITEABLE"]):
         raise ValueError("out: must be C-contiguous and writeable")
     why = _bezinv.invert(curves, array, array.shape[1], selection, index, out, float(tol), bool(refine),
-                         bool(fast_path), algebraic, off_curve, _check_threads(threads), bool(reasons))
+                         bool(fast_path), algebraic, off_curve, _check_threads(threads), bool(reasons), point)
     return (out, why) if reasons else out
 
 

@@ -22,7 +22,8 @@ def _invert_block(points, curve_index=None, *, curves, curve, options):
 def invert(plans, points, curve=None, curve_index=None, **options):
     """bezinv.invert for a dask array `points` (N, 2) or (N, 3), chunked along rows (its columns
     are made one chunk), and optionally a dask or numpy (N,) `curve_index`. The other keywords are
-    bezinv.invert's (not `reasons`). Returns a lazy (N,) dask array of bezinv.RESULT_DTYPE.
+    bezinv.invert's (not `reasons`). Returns a lazy (N,) dask array of bezinv.RESULT_DTYPE
+    (RESULT_POINT_DTYPE with columns=("point",)).
 
     `threads` is per block: with several single-threaded workers per machine, pass threads=1;
     with one worker per machine, leave it 0 (all cores)."""
@@ -43,6 +44,8 @@ def invert(plans, points, curve=None, curve_index=None, **options):
         arguments += [index.rechunk((points.chunks[0],)), "i"]
     if curve is None and curve_index is None:
         curve = 0
+    columns = options.get("columns", ())
+    dtype = bezinv.RESULT_POINT_DTYPE if "point" in ((columns,) if isinstance(columns, str) else columns) else bezinv.RESULT_DTYPE
     # blockwise over the rows (i); the columns (j, one chunk) are taken whole by each block.
     return da.blockwise(_invert_block, "i", *arguments, curves=curves, curve=curve, options=options,
-                        dtype=bezinv.RESULT_DTYPE, concatenate=True, meta=np.empty((0,), dtype=bezinv.RESULT_DTYPE))
+                        dtype=dtype, concatenate=True, meta=np.empty((0,), dtype=dtype))

@@ -155,7 +155,8 @@ bool invert_in_place(const Curves& curves, const bezinv::PointArray& array, std:
 // them); `reasons` (when asked for) gets each row's reason. The caller checked the shapes.
 py::object invert(const Curves& curves, const py::array& points, std::size_t width, const std::string& curve,
                   const py::object& curve_index, py::array& out, double tol, bool refine, bool fast_path,
-                  const std::string& algebraic, const std::string& off_curve, int threads, bool want_reasons) {
+                  const std::string& algebraic, const std::string& off_curve, int threads, bool want_reasons,
+                  bool point_columns) {
   bezinv::PointArray array;
   array.coordinates = std::span(static_cast<const double*>(points.data()), static_cast<std::size_t>(points.size()));
   array.width = width;
@@ -167,7 +168,10 @@ py::object invert(const Curves& curves, const py::array& points, std::size_t wid
   }
   array.name = "points";
   const std::size_t rows = array.coordinates.size() / (width == 0 ? 1 : width);
-  if (static_cast<std::size_t>(out.nbytes()) != rows * bezinv::kResultRecordBytes)
+  bezinv::ResultColumns columns;
+  columns.point = point_columns;
+  const std::size_t record_bytes = bezinv::kResultRecordBytes + (point_columns ? bezinv::kPointColumnsBytes : 0);
+  if (static_cast<std::size_t>(out.nbytes()) != rows * record_bytes)
     throw std::invalid_argument("out: " + std::to_string(out.nbytes()) + " bytes for " + std::to_string(rows) + " rows");
   std::vector<const char*> reasons(want_reasons ? rows : 0);
   const bezinv::InvertOptions options = options_from(tol, refine, fast_path, algebraic, off_curve, threads);
@@ -175,8 +179,8 @@ py::object invert(const Curves& curves, const py::array& points, std::size_t wid
     py::gil_scoped_release released;
     const std::span<char> records(static_cast<char*>(out.mutable_data()), static_cast<std::size_t>(out.nbytes()));
     const auto reader = bezinv::open_points(array, curves.curves);  // checks the array as a whole first
-    const auto writer = bezinv::open_results(records, std::span(reasons));
-    const bool answered_in_place = !want_reasons && invert_in_place(curves, array, records, options);
+    const auto writer = bezinv::open_results(records, std::span(reasons), columns);
+    const bool answered_in_place = !want_reasons && !point_columns && invert_in_place(curves, array, records, options);
     if (!answered_in_place && !curves.plans.empty()) {
       bezinv::invert_stream(*reader, *writer, std::span<const bezinv::InversionPlan>(curves.plans), options);
     } else if (!answered_in_place) {
@@ -318,7 +322,11 @@ PYBIND11_MODULE(_bezinv, m) {
     py::gil_scoped_release released;
     return bezinv::cli::stress_json(options);
   });
-  m.def("result_descr", [] { return std::string(bezinv::result_descr()); });
+  m.def("result_descr", [](bool point_columns) {
+    bezinv::ResultColumns columns;
+    columns.point = point_columns;
+    return std::string(bezinv::result_descr(columns));
+  }, py::arg("point_columns") = false);
   m.def("status_names", [] {
     std::vector<std::string> names;
     for (int s = 0; s <= static_cast<int>(bezinv::Status::failed); ++s)

@@ -48,8 +48,13 @@ def test_a_local_cluster_answers_as_one_process():
         assert lazy.dtype == bezinv.RESULT_DTYPE and lazy.numblocks == (6,)
         got = lazy.compute()
         one_curve = bezinv.dask.invert(plans, da.from_array(points, chunks=(9_000, 2)), curve="arc").compute()
+        with_points = bezinv.dask.invert(plans, da.from_array(points, chunks=(9_000, 2)), curve="arc",
+                                         columns=("point",))
+        assert with_points.dtype == bezinv.RESULT_POINT_DTYPE
+        with_points = with_points.compute()
     assert got.tobytes() == expected.tobytes()
     assert one_curve.tobytes() == bezinv.invert(plans, points, curve="arc").tobytes()
+    assert with_points.tobytes() == bezinv.invert(plans, points, curve="arc", columns=("point",)).tobytes()
 
 
 def test_dask_arguments_are_checked():

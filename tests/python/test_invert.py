@@ -98,6 +98,37 @@ def test_arrays_of_many_chunks_match_the_command_on_any_thread_count(tmp_path, c
             assert expected["status"][50000] == bezinv.INVALID_INPUT
 
 
+def test_point_columns_match_the_command(tmp_path, cli):
+    # columns=("point",) is --columns point: the same records, byte for byte, plane and space curves,
+    # bad rows included; x_t, y_t of a point made from a known t are that point.
+    curves_path = write_curves(str(tmp_path), CURVES)
+    rng = np.random.default_rng(3)
+    t = rng.uniform(0, 1, 200)
+    points = curve_points(CUBIC, t)
+    points[7] = [np.nan, 0.0]
+    np.save(tmp_path / "p.npy", points)
+    run_cli(cli, "invert", "--curves", curves_path, "--points", tmp_path / "p.npy", "--curve", "cubic",
+            "--columns", "point", "--out", tmp_path / "o.npy")
+    expected = np.load(tmp_path / "o.npy")
+    got = bezinv.invert(curves_path, points, curve="cubic", columns=("point",))
+    assert got.dtype == bezinv.RESULT_POINT_DTYPE == expected.dtype
+    assert got.tobytes() == expected.tobytes()
+    finite = np.isfinite(points).all(axis=1)
+    np.testing.assert_allclose(np.stack([got["x_t"], got["y_t"]], axis=1)[finite], points[finite], atol=1e-12)
+    assert np.all(got["z_t"][finite] == 0) and np.isnan(got["x_t"][7])
+    space = curve_points(SPACE, t)
+    np.save(tmp_path / "s.npy", space)
+    run_cli(cli, "invert", "--curves", curves_path, "--points", tmp_path / "s.npy", "--curve", "helix",
+            "--columns", "point", "--out", tmp_path / "so.npy")
+    got = bezinv.invert(curves_path, space, curve="helix", columns="point")
+    assert got.tobytes() == np.load(tmp_path / "so.npy").tobytes()
+    np.testing.assert_allclose(np.stack([got["x_t"], got["y_t"], got["z_t"]], axis=1), space, atol=1e-12)
+    with pytest.raises(ValueError, match="columns: 'normal'"):
+        bezinv.invert(curves_path, points, curve="cubic", columns=("normal",))
+    with pytest.raises(ValueError, match="RESULT_POINT_DTYPE"):
+        bezinv.invert(curves_path, points, curve="cubic", columns=("point",), out=np.empty(200, bezinv.RESULT_DTYPE))
+
+
 def test_space_points_match_the_command(tmp_path, cli):
     curves_path = write_curves(str(tmp_path), [SPACE])
     t = np.linspace(-0.1, 1.1, 257)

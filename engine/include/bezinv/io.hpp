@@ -164,8 +164,11 @@ std::unique_ptr<ResultWriter> open_results(const std::string& path, int threads 
 // written; `reasons` (optional, as long) gets each row's reason. commit() does nothing.
 inline constexpr std::size_t kResultRecordBytes = 5 * 8 + 2;
 inline constexpr std::size_t kPointColumnsBytes = 3 * 8;
-std::string_view result_descr();  // numpy's descr of the record, as OUT.npy's header writes it
-std::unique_ptr<ResultWriter> open_results(std::span<char> records, std::span<const char*> reasons = {});
+// numpy's descr of the record, as OUT.npy's header writes it (with the point columns: their fields
+// after path, kResultRecordBytes + kPointColumnsBytes a record).
+std::string_view result_descr(ResultColumns columns = {});
+std::unique_ptr<ResultWriter> open_results(std::span<char> records, std::span<const char*> reasons = {},
+                                           ResultColumns columns = {});
 
 // For commands: SIGINT, SIGTERM and SIGHUP (unless ignored) remove the temporary file of every
 // open ResultWriter, then end the process by the same signal. Call once, before open_results.
