@@ -204,6 +204,7 @@ class MemoryResultWriter final : public ResultWriter {
 }  // namespace
 
 std::string_view result_descr(ResultColumns columns) { return detail::result_descr_for(columns); }
+std::size_t result_record_bytes(ResultColumns columns) { return detail::record_bytes_for(columns); }
 
 std::unique_ptr<ResultWriter> open_results(std::span<char> records, std::span<const char*> reasons,
                                            ResultColumns columns) {

@@ -11,12 +11,13 @@
 namespace bezinv::detail {
 namespace {
 
+void include(double x, RatioRange& range) {
+  range.lo = std::min(range.lo, x);
+  range.hi = std::max(range.hi, x);
+}
+
 void include_ratios(std::span<const double> num, std::span<const double> den, RatioRange& range) {
-  for (std::size_t i = 0; i < num.size(); ++i) {
-    const double x = num[i] / den[i];
-    range.lo = std::min(range.lo, x);
-    range.hi = std::max(range.hi, x);
-  }
+  for (std::size_t i = 0; i < num.size(); ++i) include(num[i] / den[i], range);
 }
 
 void include_piece(const BernsteinPoly& num, const BernsteinPoly& den, int level, int& pieces, RatioRange& range) {
@@ -28,7 +29,7 @@ void include_piece(const BernsteinPoly& num, const BernsteinPoly& den, int level
   if (level == kRatioRangeHalvings || pieces >= kRatioRangePieces) {
     // The piece's end points lie on the curve wherever den does not vanish there.
     for (const std::size_t i : {std::size_t{0}, num.size() - 1})
-      if (den[i] != 0.0 && std::isfinite(num[i] / den[i])) include_ratios(std::span(num).subspan(i, 1), std::span(den).subspan(i, 1), range);
+      if (den[i] != 0.0 && std::isfinite(num[i] / den[i])) include(num[i] / den[i], range);
     return;
   }
   BernsteinPoly num_left, num_right, den_left, den_right;

@@ -131,6 +131,20 @@ def _index_array(curve_index, rows):
     return np.ascontiguousarray(array, dtype=np.int64)
 
 
+def _point_columns(columns):
+    """Whether `columns` (a name or a list of names, as invert takes them) asks for the point columns."""
+    if isinstance(columns, str):
+        columns = (columns,)
+    try:
+        columns = tuple(columns)
+    except TypeError:
+        raise TypeError("columns: expected a list of names, got %s" % type(columns).__name__) from None
+    for name in columns:
+        if name not in _COLUMNS:
+            raise ValueError("columns: %r is not one of %s" % (name, ", ".join(_COLUMNS)))
+    return "point" in columns
+
+
 def invert(plans, points, curve=None, curve_index=None, tol=DEFAULT_TOLERANCE, refine=True, fast_path=True,
            algebraic="bezout", off_curve="nearest", threads=0, reasons=False, out=None, columns=()):
     """The parameter of every point, as `bezinv invert` gives it.
@@ -184,16 +198,7 @@ def invert(plans, points, curve=None, curve_index=None, tol=DEFAULT_TOLERANCE, r
         raise ValueError("algebraic: %r is not one of %s" % (algebraic, ", ".join(_ALGEBRAIC)))
     if off_curve not in _OFF_CURVE:
         raise ValueError("off_curve: %r is not one of %s" % (off_curve, ", ".join(_OFF_CURVE)))
-    if isinstance(columns, str):
-        columns = (columns,)
-    try:
-        columns = tuple(columns)
-    except TypeError:
-        raise TypeError("columns: expected a list of names, got %s" % type(columns).__name__) from None
-    for name in columns:
-        if name not in _COLUMNS:
-            raise ValueError("columns: %r is not one of %s" % (name, ", ".join(_COLUMNS)))
-    point = "point" in columns
+    point = _point_columns(columns)
     dtype, dtype_name = (RESULT_POINT_DTYPE, "RESULT_POINT_DTYPE") if point else (RESULT_DTYPE, "RESULT_DTYPE")
     if out is None:
         out = np.empty(rows, dtype=dtype)

@@ -44,8 +44,7 @@ def invert(plans, points, curve=None, curve_index=None, **options):
         arguments += [index.rechunk((points.chunks[0],)), "i"]
     if curve is None and curve_index is None:
         curve = 0
-    columns = options.get("columns", ())
-    dtype = bezinv.RESULT_POINT_DTYPE if "point" in ((columns,) if isinstance(columns, str) else columns) else bezinv.RESULT_DTYPE
+    dtype = bezinv.RESULT_POINT_DTYPE if bezinv._point_columns(options.get("columns", ())) else bezinv.RESULT_DTYPE
     # blockwise over the rows (i); the columns (j, one chunk) are taken whole by each block.
     return da.blockwise(_invert_block, "i", *arguments, curves=curves, curve=curve, options=options,
                         dtype=dtype, concatenate=True, meta=np.empty((0,), dtype=dtype))

@@ -170,7 +170,7 @@ py::object invert(const Curves& curves, const py::array& points, std::size_t wid
   const std::size_t rows = array.coordinates.size() / (width == 0 ? 1 : width);
   bezinv::ResultColumns columns;
   columns.point = point_columns;
-  const std::size_t record_bytes = bezinv::kResultRecordBytes + (point_columns ? bezinv::kPointColumnsBytes : 0);
+  const std::size_t record_bytes = bezinv::result_record_bytes(columns);
   if (static_cast<std::size_t>(out.nbytes()) != rows * record_bytes)
     throw std::invalid_argument("out: " + std::to_string(out.nbytes()) + " bytes for " + std::to_string(rows) + " rows");
   std::vector<const char*> reasons(want_reasons ? rows : 0);

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/de_casteljau.hpp"
@@ -78,17 +79,23 @@ struct ColumnsFiles {
     return "invert --curves " + columns_quoted(curves) + " --points " + columns_quoted(points) + " --out " +
            columns_quoted(out) + extra;
   }
+  // OUT without and with --columns point (extension `ext`): the two files' contents.
+  std::pair<std::string, std::string> plain_and_with(const std::string& ext) const {
+    const std::string plain = scratch.path("plain" + ext), with = scratch.path("with" + ext);
+    EXPECT_EQ(run_bezinv(scratch, invert(plain)).exit_code, 0);
+    const auto run = run_bezinv(scratch, invert(with, " --columns point"));
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return {read_file(plain), read_file(with)};
+  }
 };
 
 double columns_number(const std::string& text) { return text == "nan" ? NAN : std::stod(text); }
 
 TEST(CliColumns, PointColumnsInCsvAreTheCurvesPointAtT) {
   ColumnsFiles f;
-  const std::string plain = f.scratch.path("plain.csv"), with = f.scratch.path("with.csv");
-  ASSERT_EQ(run_bezinv(f.scratch, f.invert(plain)).exit_code, 0);
-  const auto run = run_bezinv(f.scratch, f.invert(with, " --columns point"));
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  const std::vector<std::string> plain_lines = split(read_file(plain), '\n'), lines = split(read_file(with), '\n');
+  const auto [plain, with] = f.plain_and_with(".csv");
+  ASSERT_FALSE(HasFailure());
+  const std::vector<std::string> plain_lines = split(plain, '\n'), lines = split(with, '\n');
   ASSERT_EQ(lines.size(), plain_lines.size());
   EXPECT_EQ(lines[0], "t,status,residual,t2,sigma_min,sigma_next,path,reason,x_t,y_t,z_t");
   int checked = 0, nan_rows = 0;
@@ -122,13 +129,10 @@ std::string columns_records(const std::string& npy) {
 
 TEST(CliColumns, PointColumnsInNpyFollowTheRecordsFields) {
   ColumnsFiles f;
-  const std::string plain = f.scratch.path("plain.npy"), with = f.scratch.path("with.npy");
-  ASSERT_EQ(run_bezinv(f.scratch, f.invert(plain)).exit_code, 0);
-  const auto run = run_bezinv(f.scratch, f.invert(with, " --columns point"));
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  const std::string npy = read_file(with);
+  const auto [plain, npy] = f.plain_and_with(".npy");
+  ASSERT_FALSE(HasFailure());
   EXPECT_NE(npy.find("('path', '|u1'), ('x_t', '<f8'), ('y_t', '<f8'), ('z_t', '<f8')]"), std::string::npos);
-  const std::string records = columns_records(npy), plain_records = columns_records(read_file(plain));
+  const std::string records = columns_records(npy), plain_records = columns_records(plain);
   const std::size_t rows = f.row_curves.size();
   ASSERT_EQ(plain_records.size(), rows * 42);
   ASSERT_EQ(records.size(), rows * 66);

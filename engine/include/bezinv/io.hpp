@@ -167,6 +167,7 @@ inline constexpr std::size_t kPointColumnsBytes = 3 * 8;
 // numpy's descr of the record, as OUT.npy's header writes it (with the point columns: their fields
 // after path, kResultRecordBytes + kPointColumnsBytes a record).
 std::string_view result_descr(ResultColumns columns = {});
+std::size_t result_record_bytes(ResultColumns columns = {});  // kResultRecordBytes (+ kPointColumnsBytes)
 std::unique_ptr<ResultWriter> open_results(std::span<char> records, std::span<const char*> reasons = {},
                                            ResultColumns columns = {});
 
