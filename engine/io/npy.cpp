@@ -23,11 +23,7 @@ constexpr std::size_t kAlignment = 64;
 // beyond it is refused before anything is allocated for it.
 constexpr std::uint32_t kMaxHeaderBytes = 10000;
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
-  throw InputError(path + ": header: " + problem);
-}
-
-// Recursive descent over the header dict; `fail` names the file.
+// Recursive descent over the header dict; `fail_npy_header` names the file.
 class HeaderParser {
  public:
   HeaderParser(std::string_view text, const std::string& path) : text_(text), path_(path) {}
@@ -52,7 +48,7 @@ class HeaderParser {
         has_shape = true;
         header.shape = integer_tuple();
       } else {
-        fail(path_, "unexpected key " + quoted_excerpt(key));
+        fail_npy_header(path_, "unexpected key " + quoted_excerpt(key));
       }
       skip_blanks();
       if (peek() == ',') {
@@ -67,10 +63,10 @@ class HeaderParser {
     // is not a header numpy wrote, and not part of the array either.
     const std::string_view rest = text_.substr(position_);
     if (rest.find_first_not_of(" \n") != std::string_view::npos)
-      fail(path_, "text after the dict: " + quoted_excerpt(rest) + " (only spaces and a newline may follow its '}')");
-    if (!has_descr) fail(path_, "missing 'descr'");
-    if (!has_order) fail(path_, "missing 'fortran_order'");
-    if (!has_shape) fail(path_, "missing 'shape'");
+      fail_npy_header(path_, "text after the dict: " + quoted_excerpt(rest) + " (only spaces and a newline may follow its '}')");
+    if (!has_descr) fail_npy_header(path_, "missing 'descr'");
+    if (!has_order) fail_npy_header(path_, "missing 'fortran_order'");
+    if (!has_shape) fail_npy_header(path_, "missing 'shape'");
     return header;
   }
 
@@ -87,7 +83,7 @@ class HeaderParser {
     while (position_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[position_]))) ++position_;
   }
   [[noreturn]] void malformed(const std::string& expected) {
-    fail(path_, "malformed dict: expected " + expected + " at character " + std::to_string(position_));
+    fail_npy_header(path_, "malformed dict: expected " + expected + " at character " + std::to_string(position_));
   }
   void expect(char c) {
     skip_blanks();
@@ -175,16 +171,16 @@ NpyHeader read_npy_header(std::FILE* file, const std::string& path) {
   if (got < 8 || std::memcmp(start, kMagic.data(), kMagic.size()) != 0)
     throw InputError(path + ": not a .npy file (no \\x93NUMPY magic at the start)");
   const int major = start[6], minor = start[7];
-  if (major < 1 || major > 3) fail(path, "unsupported format version " + std::to_string(major) + "." + std::to_string(minor));
+  if (major < 1 || major > 3) fail_npy_header(path, "unsupported format version " + std::to_string(major) + "." + std::to_string(minor));
   // Version 1.0: a 2-byte header length; 2.0 and 3.0 (UTF-8 header): 4 bytes.
   const int length_bytes = major == 1 ? 2 : 4;
-  if (got < 10 || (length_bytes == 4 && std::fread(start + 10, 1, 2, file) != 2)) fail(path, "truncated");
+  if (got < 10 || (length_bytes == 4 && std::fread(start + 10, 1, 2, file) != 2)) fail_npy_header(path, "truncated");
   const std::uint32_t length = little_endian(start + 8, length_bytes);
   if (length > kMaxHeaderBytes)
-    fail(path, "length " + std::to_string(length) + " bytes is more than the " + std::to_string(kMaxHeaderBytes) +
+    fail_npy_header(path, "length " + std::to_string(length) + " bytes is more than the " + std::to_string(kMaxHeaderBytes) +
                    " numpy reads (np.load's max_header_size)");
   std::string text(length, '\0');
-  if (std::fread(text.data(), 1, length, file) != length) fail(path, "truncated (the dict is shorter than its length)");
+  if (std::fread(text.data(), 1, length, file) != length) fail_npy_header(path, "truncated (the dict is shorter than its length)");
   NpyHeader header = HeaderParser(text, path).parse();
   header.data_offset = 8 + static_cast<std::uint64_t>(length_bytes) + length;
   return header;
@@ -218,6 +214,10 @@ void read_npy_data(std::FILE* file, const std::string& path, void* into, std::si
   if (got == bytes) return;
   if (std::ferror(file)) throw InputError(path + ": cannot read: " + std::strerror(errno));
   throw InputError(path + ": data: truncated: the file ends before the array does");
+}
+
+void fail_npy_header(const std::string& path, const std::string& problem) {
+  throw InputError(path + ": header: " + problem);
 }
 
 }  // namespace bezinv::detail

@@ -23,6 +23,9 @@ bool has_npy_extension(const std::string& path);
 // "<path>: header: <problem>" (or "<path>: not a .npy file ...").
 NpyHeader read_npy_header(std::FILE* file, const std::string& path);
 
+// Throws InputError "<path>: header: <problem>", the form of every header error.
+[[noreturn]] void fail_npy_header(const std::string& path, const std::string& problem);
+
 // A shape as numpy prints it: "(3,)", "(3, 2)".
 std::string shape_text(const std::vector<std::uint64_t>& shape);
 

@@ -31,10 +31,6 @@ using namespace detail;
 // The arrays are copied byte for byte: the host must store doubles and integers as '<' does.
 static_assert(std::endian::native == std::endian::little, "the .npy readers assume a little-endian host");
 
-[[noreturn]] void fail_header(const std::string& path, const std::string& problem) {
-  throw InputError(path + ": header: " + problem);
-}
-
 std::string decimal(unsigned __int128 value) {
   std::string digits;
   do {
@@ -99,10 +95,10 @@ class NpyPointReader final : public PointReader {
   NpyPointReader(const std::string& path, const std::vector<Curve>& curves, const CurveSelection& selection)
       : points_(path), curve_count_(curves.size()) {
     const NpyHeader& header = points_.header();
-    if (header.descr != "'<f8'") fail_header(path, "dtype " + escaped_excerpt(header.descr) + " is not '<f8' (float64)");
-    if (header.fortran_order) fail_header(path, "fortran_order is True; only C order is read");
+    if (header.descr != "'<f8'") fail_npy_header(path, "dtype " + escaped_excerpt(header.descr) + " is not '<f8' (float64)");
+    if (header.fortran_order) fail_npy_header(path, "fortran_order is True; only C order is read");
     if (header.shape.size() != 2 || (header.shape[1] != 2 && header.shape[1] != 3))
-      fail_header(path, "shape " + shape_text(header.shape) + " is not (N, 2) or (N, 3)");
+      fail_npy_header(path, "shape " + shape_text(header.shape) + " is not (N, 2) or (N, 3)");
     width_ = static_cast<std::size_t>(header.shape[1]);
     const std::uint64_t rows = header.shape[0];
     progress_.bytes_total = header.data_offset + points_.expect_data(rows, 8 * width_);
@@ -127,11 +123,11 @@ class NpyPointReader final : public PointReader {
       const std::string& index_path = selection.index_path;
       if (index_header.descr == "'<i4'") index_bytes_ = 4;
       else if (index_header.descr == "'<i8'") index_bytes_ = 8;
-      else fail_header(index_path, "dtype " + escaped_excerpt(index_header.descr) + " is not '<i4' or '<i8' (int32, int64)");
+      else fail_npy_header(index_path, "dtype " + escaped_excerpt(index_header.descr) + " is not '<i4' or '<i8' (int32, int64)");
       // A 1-D array is the same in either order.
-      if (index_header.shape.size() != 1) fail_header(index_path, "shape " + shape_text(index_header.shape) + " is not (N,)");
+      if (index_header.shape.size() != 1) fail_npy_header(index_path, "shape " + shape_text(index_header.shape) + " is not (N,)");
       if (index_header.shape[0] != rows)
-        fail_header(index_path, "shape " + shape_text(index_header.shape) + " does not match the " +
+        fail_npy_header(index_path, "shape " + shape_text(index_header.shape) + " does not match the " +
                                     std::to_string(rows) + " points of " + path);
       indices_->expect_data(rows, index_bytes_);
     } else {
@@ -206,7 +202,7 @@ class NpyPointReader final : public PointReader {
 
 std::uint64_t npy_rows(const std::string& path) {
   const NpyFile file(path);
-  if (file.header().shape.size() != 2) fail_header(path, "shape " + shape_text(file.header().shape) + " is not (N, 2) or (N, 3)");
+  if (file.header().shape.size() != 2) fail_npy_header(path, "shape " + shape_text(file.header().shape) + " is not (N, 2) or (N, 3)");
   return file.header().shape[0];
 }
 

@@ -7,10 +7,11 @@
 #include <complex>
 #include <limits>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Core>
 
 #include "bezinv/bernstein.hpp"
 #include "bezinv/tolerances.hpp"
+#include "generalized_eigenvalues.hpp"
 #include "null_vector_read_out.hpp"
 
 namespace bezinv {
@@ -114,13 +115,14 @@ int parameters_from_null_space(std::span<const double> basis, int k, std::span<d
   }
   const Eigen::MatrixXd m1 = e.transpose() * a, m2 = e.transpose() * e;
   if (!m1.allFinite() || !m2.allFinite()) return 0;
-  Eigen::GeneralizedEigenSolver<Eigen::MatrixXd> qz(m1, m2, /*computeEigenvectors=*/false);
-  if (qz.info() != Eigen::Success) return 0;
+  Eigen::VectorXcd alphas;
+  Eigen::VectorXd betas;
+  if (!detail::generalized_eigenvalues(m1, m2, alphas, betas)) return 0;
   const double scale = m1.norm() + m2.norm();
   int count = 0;
   for (int j = 0; j < k; ++j) {
-    const std::complex<double> alpha = qz.alphas()(j);
-    const double beta = qz.betas()(j);
+    const std::complex<double> alpha = alphas(j);
+    const double beta = betas(j);
     // A root at infinity (a degree drop), or too far out to be more than rounding.
     if (!(std::abs(beta) > kPencilInfinityRatio * scale)) continue;
     const double re = alpha.real() / beta, im = alpha.imag() / beta;

@@ -147,7 +147,7 @@ TEST(BatchImplementations, ScalarFirstAndAvx512OnThisCpu) {
 
 // Every instruction set this CPU runs is available, where this build compiled it; the tests that
 // compare implementations then compare all of them. A tree built with BEZINV_KERNEL_TARGETS=native
-// (the sanitizer tree) has scalar and the best only: the others are reported skipped here.
+// (the trees of scripts/test.sh) has scalar and this CPU's only: the others are reported skipped here.
 TEST(BatchImplementations, EveryInstructionSetOfThisCpu) {
   const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
                       __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw");

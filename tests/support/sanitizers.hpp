@@ -2,7 +2,8 @@
 // The heaviest property tests draw fewer random cases under AddressSanitizer (the sanitizer tree
 // of scripts/test.sh, where the engine runs 5-20x slower): the sanitizers look for what goes
 // wrong on a code path, and a fraction of the cases walks the same paths (every degree, kind and
-// kernel size is kept; the tests that thin say how). The Release tree runs every case.
+// kernel size is kept; the tests that thin say how). The Release tree (`scripts/test.sh --release`)
+// runs every case.
 #include <cstddef>
 
 namespace bezinv::test_support {
