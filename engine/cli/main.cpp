@@ -58,7 +58,7 @@ struct InvertArguments {
   double relative_tolerance = bezinv::kDefaultRelativeTolerance;
   bool no_refine = false;
   bool svd_only = false;
-  std::string algebraic = "bezout";
+  std::string algebraic = "auto";
   std::string off_curve = "nearest";
   int threads = 0;
   bool verbose = false;
@@ -197,7 +197,7 @@ int run_invert(const InvertArguments& arguments) {
   options.relative_tolerance = arguments.relative_tolerance;
   options.refine = !arguments.no_refine;
   options.fast_path = !arguments.svd_only;
-  options.algebraic = arguments.algebraic == "formula" ? bezinv::Algebraic::formula : bezinv::Algebraic::bezout;
+  bezinv::algebraic_named(arguments.algebraic, options.algebraic);  // checked by the parser
   options.off_curve = arguments.off_curve == "projection" ? bezinv::OffCurve::projection : bezinv::OffCurve::nearest;
   options.threads = arguments.threads;
 
@@ -284,9 +284,10 @@ int main(int argc, char** argv) {
   invert->add_flag("--svd-only", invert_arguments.svd_only,
                    "Answer every point by the SVD (exact sigma_min/sigma_next on every row; slower)");
   invert->add_option("--algebraic", invert_arguments.algebraic,
-                     "The fast path's algebraic step: bezout (B's null vector) or formula (the curve's inversion "
-                     "formula N/M where it is valid, path formula; with --no-refine, N/M itself)")
-      ->check(CLI::IsMember({"bezout", "formula"}))
+                     "The fast path's algebraic step: bezout (B's null vector), formula (the curve's inversion "
+                     "formula N/M where it is valid, path formula; with --no-refine, N/M itself) or auto (formula "
+                     "on a curve close to a lower degree, such as a smooth function's graph; bezout elsewhere)")
+      ->check(CLI::IsMember({"auto", "bezout", "formula"}))
       ->capture_default_str();
   std::string invert_rows;
   invert->add_option("--rows", invert_rows,
@@ -353,9 +354,9 @@ int main(int argc, char** argv) {
   profile->add_flag("--no-refine", profile_no_refine, "Algebraic t only (no Newton refinement)");
   bool profile_svd_only = false;
   profile->add_flag("--svd-only", profile_svd_only, "Every point by the SVD (no LU fast path)");
-  std::string profile_algebraic = "bezout";
-  profile->add_option("--algebraic", profile_algebraic, "The fast path's algebraic step: bezout or formula")
-      ->check(CLI::IsMember({"bezout", "formula"}))
+  std::string profile_algebraic = "auto";
+  profile->add_option("--algebraic", profile_algebraic, "The fast path's algebraic step: auto, bezout or formula")
+      ->check(CLI::IsMember({"auto", "bezout", "formula"}))
       ->capture_default_str();
   std::string profile_off_curve = "nearest";
   profile->add_option("--off-curve", profile_off_curve, "An off_curve row's t: nearest or projection")
@@ -493,8 +494,7 @@ int main(int argc, char** argv) {
       const ParallelismLimit parallelism(profile_options.threads);
       profile_options.refine = !profile_no_refine;
       profile_options.fast_path = !profile_svd_only;
-      profile_options.algebraic =
-          profile_algebraic == "formula" ? bezinv::Algebraic::formula : bezinv::Algebraic::bezout;
+      bezinv::algebraic_named(profile_algebraic, profile_options.algebraic);  // checked by the parser
       profile_options.off_curve =
           profile_off_curve == "projection" ? bezinv::OffCurve::projection : bezinv::OffCurve::nearest;
       profile_options.kind = profile_kind == "bezier"            ? bezinv::CurveKind::bezier

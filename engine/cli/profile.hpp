@@ -17,7 +17,7 @@ struct ProfileOptions {
   double noise = 0.0;     // points moved off the curve by up to noise x the curve's diagonal
   bool refine = true;
   bool fast_path = true;
-  Algebraic algebraic = Algebraic::bezout;
+  Algebraic algebraic = Algebraic::automatic;
   OffCurve off_curve = OffCurve::nearest;
   bool json = false;
   unsigned long long seed = 20261122;

@@ -29,6 +29,14 @@ const char* to_string(Status status) {
   return "?";
 }
 
+bool algebraic_named(std::string_view name, Algebraic& algebraic) {
+  if (name == "bezout") algebraic = Algebraic::bezout;
+  else if (name == "formula") algebraic = Algebraic::formula;
+  else if (name == "auto") algebraic = Algebraic::automatic;
+  else return false;
+  return true;
+}
+
 const char* to_string(Path path) {
   switch (path) {
     case Path::none: return "none";

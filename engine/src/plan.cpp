@@ -86,6 +86,55 @@ bool on_a_line(const detail::PlanData& plan) {
   return true;
 }
 
+// Whether every polynomial of the normalized curve has a top power coefficient below
+// kNearLowerDegreeRatio of its bound (PlanData::near_lower_degree).
+bool near_lower_degree(const detail::PlanData& plan) {
+  const int n = plan.degree;
+  for (const std::vector<double>* c : {&plan.x_num, &plan.x_den, &plan.y_num, &plan.y_den}) {
+    const std::span<const double> p(c->data(), static_cast<std::size_t>(n) + 1);
+    if (!(std::abs(power_leading_coefficient(p)) <= kNearLowerDegreeRatio * power_leading_bound(p))) return false;
+  }
+  return true;
+}
+
+// The degree-1 formula of a polynomial curve with a direction e along which e . P(t) is linear
+// (PlanData::linear_formula). e . P is linear when every second difference of its Bernstein
+// coefficients vanishes, i.e. e is normal to every second difference d_i of the control points:
+// normal to the largest, and the others along it (to kLinearDirectionRatio of their bound).
+detail::FormulaPathData linear_direction_formula(const detail::PlanData& plan) {
+  detail::FormulaPathData f;
+  const int n = plan.degree;
+  const auto constant = [&](const std::vector<double>& w) {
+    return std::all_of(w.begin(), w.begin() + n + 1, [&](double c) { return c == w[0]; });
+  };
+  if (!plan.common_denominator || !constant(plan.x_den) || plan.x_den[0] == 0.0) return f;
+  const double w = plan.x_den[0];
+  std::vector<std::array<double, 2>> d(static_cast<std::size_t>(n - 1));
+  double bound = 0.0, largest = 0.0;
+  std::size_t k = 0;
+  for (int i = 0; i + 2 <= n; ++i) {
+    d[i] = {(plan.x_num[i + 2] - 2 * plan.x_num[i + 1] + plan.x_num[i]) / w,
+            (plan.y_num[i + 2] - 2 * plan.y_num[i + 1] + plan.y_num[i]) / w};
+    bound += std::abs(plan.x_num[i + 2] / w) + 2 * std::abs(plan.x_num[i + 1] / w) + std::abs(plan.x_num[i] / w) +
+             std::abs(plan.y_num[i + 2] / w) + 2 * std::abs(plan.y_num[i + 1] / w) + std::abs(plan.y_num[i] / w);
+    const double size = std::hypot(d[i][0], d[i][1]);
+    if (size > largest) largest = size, k = static_cast<std::size_t>(i);
+  }
+  if (!(largest > 0.0)) return f;  // a straight line (no second differences): its own path
+  const double eu = -d[k][1] / largest, ev = d[k][0] / largest;
+  for (const auto& di : d)
+    if (!(std::abs(eu * di[0] + ev * di[1]) <= kLinearDirectionRatio * bound)) return f;
+  // e . P(t) = e . c_0 + n e . (c_1 - c_0) t in normalized units.
+  const double start = (eu * plan.x_num[0] + ev * plan.y_num[0]) / w;
+  const double slope = n * (eu * (plan.x_num[1] - plan.x_num[0]) + ev * (plan.y_num[1] - plan.y_num[0])) / w;
+  if (!(std::abs(slope) >= kLinearDirectionMinSlope * plan.normalized_diagonal)) return f;
+  f.degree = 1;
+  f.n = {-start, eu, ev};  // N = e . (u, v) - e . P(0)
+  f.m = {slope, 0.0, 0.0};  // M = n e . (c_1 - c_0)
+  f.usable = true;
+  return f;
+}
+
 }  // namespace
 
 namespace detail {
@@ -238,6 +287,8 @@ PlanData make_plan_data(const Curve& given) {
   detail::horner_coefficients(plan);
   detail::isolation_pieces(plan);
   plan.straight_line = n >= 2 && on_a_line(plan);
+  plan.near_lower_degree = n >= 3 && near_lower_degree(plan);
+  if (n >= 2) plan.linear_formula = linear_direction_formula(plan);
 
   if (plan.diagonal == 0.0) {
     plan.usable = false;

@@ -123,6 +123,14 @@ struct PlanData {
   // The curve lies on a straight line (within kVanishingBezoutRatio of its size): B vanishes at
   // every point of it, and its points are inverted from the roots of p (engine/src/pipeline/decide.cpp).
   bool straight_line = false;
+  // The curve is close to one of degree n - 1 (kNearLowerDegreeRatio): B is nearly singular twice
+  // over at every point, and Algebraic::automatic takes the formula path (formula_path.hpp).
+  bool near_lower_degree = false;
+  // A polynomial curve with a direction e along which e . P(t) is linear in t (a function's graph
+  // y = f(x) with x(t) linear, and its rotations): t = (e . P - e . P(0)) / (e . P'), an inversion
+  // formula of degree 1 valid at every point, which the formula path takes before the curve's own
+  // (plan.cpp, linear_direction_formula). Not usable otherwise.
+  FormulaPathData linear_formula;
   // max |entry| of B0, Bx, By, Bxy: a bound of B's terms before they cancel, for any point.
   std::array<double, 4> bezout_max_entries{0.0, 0.0, 0.0, 0.0};
 

@@ -42,7 +42,7 @@ PATH_NAMES = tuple(_bezinv.path_names())      # the codes of the `path` field
 OK, OUTSIDE_SEGMENT, DOUBLE_POINT, OFF_CURVE, INVALID_INPUT, FAILED = range(6)
 DEFAULT_TOLERANCE = _bezinv.default_relative_tolerance
 
-_ALGEBRAIC = ("bezout", "formula")
+_ALGEBRAIC = ("auto", "bezout", "formula")
 _OFF_CURVE = ("nearest", "projection")
 _MAX_THREADS = 1024  # as `bezinv invert --threads`
 
@@ -146,7 +146,7 @@ def _point_columns(columns):
 
 
 def invert(plans, points, curve=None, curve_index=None, tol=DEFAULT_TOLERANCE, refine=True, fast_path=True,
-           algebraic="bezout", off_curve="nearest", threads=0, reasons=False, out=None, columns=()):
+           algebraic="auto", off_curve="nearest", threads=0, reasons=False, out=None, columns=()):
     """The parameter of every point, as `bezinv invert` gives it.
 
     plans       plan(curves), or curves as load_curves takes them (plans are then built for the
@@ -158,7 +158,7 @@ def invert(plans, points, curve=None, curve_index=None, tol=DEFAULT_TOLERANCE, r
     tol         on-curve tolerance relative to the control-point bounding-box diagonal
     refine      False: the paper's algebraic t (--no-refine)
     fast_path   False: every point by the SVD (--svd-only)
-    algebraic   "bezout" or "formula" (--algebraic)
+    algebraic   "auto", "bezout" or "formula" (--algebraic)
     off_curve   "nearest" or "projection" (--off-curve)
     threads     0: all cores
     reasons     True: also return a list of each row's reason (why invalid_input or failed)

@@ -46,7 +46,7 @@ bezinv::InvertOptions options_from(double tol, bool refine, bool fast_path, cons
   options.relative_tolerance = tol;
   options.refine = refine;
   options.fast_path = fast_path;
-  options.algebraic = algebraic == "formula" ? bezinv::Algebraic::formula : bezinv::Algebraic::bezout;
+  bezinv::algebraic_named(algebraic, options.algebraic);  // checked by bezinv.invert
   options.off_curve = off_curve == "projection" ? bezinv::OffCurve::projection : bezinv::OffCurve::nearest;
   options.threads = threads;
   return options;

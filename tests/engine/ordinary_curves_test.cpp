@@ -186,6 +186,69 @@ TEST(OrdinaryCurves, GraphsOfFunctions) {
   EXPECT_GT(findings.points(), 2000 / test_support::kSanitizerThinning);
 }
 
+// A smooth function's graph is close to a curve of lower degree (its top differences are tiny), so
+// B is nearly singular twice over at every point and the Bezout seed settles few of them. With
+// x(t) linear the default (Algebraic::automatic) starts from t = (x - x(0)) / x' instead: the
+// on-curve points are answered on the formula path, and every point, on the curve or near it, gets
+// the status and t the SVD path gives it (fast_path false: every point by the SVD). The SVD path
+// is the reference here; GraphsOfFunctions checks the same families against exact arithmetic.
+TEST(OrdinaryCurves, SmoothGraphsTakeTheLinearFormulaWithTheSvdPathsAnswers) {
+  int curves = 0, curves_seen = 0, on_curve = 0, by_formula = 0, compared = 0;
+  for (int n = 3; n <= 32; ++n)
+    for (Ordinates f : {Ordinates::sine, Ordinates::exponential})
+      for (Form form : {Form::bezier, Form::rational_common})
+        for (bool rotate : {false, true}) {
+          if (test_support::thinned_out(static_cast<std::size_t>(curves_seen++))) continue;
+          const std::uint64_t seed = 7000ULL * n + 100ULL * static_cast<int>(f) + 10ULL * static_cast<int>(form) + rotate;
+          std::mt19937_64 rng(seed);
+          Points polygon = graph_polygon(f, n, rng);
+          if (rotate) polygon = rotated_45(polygon);
+          const Curve curve = graph_curve(polygon, form, rng);
+          const std::string name = std::string(to_string(form)) + " degree " + std::to_string(n) + " " + to_string(f) +
+                                   (rotate ? " rotated 45" : "");
+          const ExactCurve exact(curve);
+          const InversionPlan plan = make_plan(curve);
+          ASSERT_TRUE(plan.usable()) << name;
+          // On the curve, and moved off it by 1e-9 .. 1e-3 of the diagonal (within the tolerance
+          // and beyond it) in a random direction.
+          std::vector<Point> points;
+          constexpr int kOn = 16;
+          for (int k = 0; k < kOn; ++k) points.push_back(known_at(exact, datasets::uniform(rng, 0.0, 1.0)).point);
+          for (double offset : {1e-9, 1e-7, 1e-5, 1e-3})
+            for (int k = 0; k < 4; ++k) {
+              const Point p = known_at(exact, datasets::uniform(rng, 0.0, 1.0)).point;
+              const double angle = datasets::uniform(rng, 0.0, 2 * std::acos(-1.0));
+              const double r = offset * std::sqrt(2.0);  // the polygon's diagonal is about sqrt(2)
+              points.push_back({p.x + r * std::cos(angle), p.y + r * std::sin(angle)});
+            }
+          std::vector<PointResult> got(points.size()), svd(points.size());
+          invert(plan, points, got);
+          invert(plan, points, svd, {.fast_path = false});
+          for (std::size_t i = 0; i < points.size(); ++i) {
+            ++compared;
+            EXPECT_EQ(got[i].status, svd[i].status) << name << ", point " << i;
+            if (got[i].status == Status::ok || got[i].status == Status::off_curve) {
+              EXPECT_NEAR(got[i].t, svd[i].t, 1e-9) << name << ", point " << i;
+            }
+          }
+          for (int k = 0; k < kOn; ++k) {
+            EXPECT_EQ(got[k].status, Status::ok) << name << ", point " << k;
+            // From degree 7 these graphs are within kNearLowerDegreeRatio of a lower degree (below
+            // it the Bezout seed settles them, and automatic keeps it).
+            if (n < 7) continue;
+            ++on_curve;
+            by_formula += got[k].path == Path::formula;
+          }
+          ++curves;
+        }
+  std::printf("[ measured ] %d graphs, %d points compared; from degree 7, %d of %d on-curve points by the formula\n",
+              curves, compared, by_formula, on_curve);
+  EXPECT_GT(curves, 200 / test_support::kSanitizerThinning);
+  // Every on-curve point of these graphs has the linear formula's start; a few may still go the
+  // SVD's way (a start the certificate cannot settle), not more.
+  EXPECT_GE(by_formula, on_curve * 95 / 100);
+}
+
 // ---- 2. near-parabolas and exactly elevated curves ----------------------------------------------
 
 // Like probe(), but a point another part of the segment comes near (a loop of a random curve) is

@@ -48,10 +48,10 @@ def test_the_answers_are_the_commands_byte_for_byte(tmp_path, cli):
     np.save(tmp_path / "points.npy", points)
     np.save(tmp_path / "index.npy", index.astype(np.int64))
     plans = bezinv.plan(curves_path)
-    variants = [[], ["--no-refine"], ["--svd-only"], ["--algebraic", "formula"], ["--off-curve", "projection"],
-                ["--tol", "1e-6"]]
-    keywords = [{}, {"refine": False}, {"fast_path": False}, {"algebraic": "formula"}, {"off_curve": "projection"},
-                {"tol": 1e-6}]
+    variants = [[], ["--no-refine"], ["--svd-only"], ["--algebraic", "formula"], ["--algebraic", "bezout"],
+                ["--off-curve", "projection"], ["--tol", "1e-6"]]
+    keywords = [{}, {"refine": False}, {"fast_path": False}, {"algebraic": "formula"}, {"algebraic": "bezout"},
+                {"off_curve": "projection"}, {"tol": 1e-6}]
     for flags, options in zip(variants, keywords):
         out = tmp_path / "out.npy"
         run_cli(cli, "invert", "--curves", curves_path, "--points", tmp_path / "points.npy",

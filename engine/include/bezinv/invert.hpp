@@ -45,7 +45,15 @@ enum class Path : std::uint8_t {
 // it is not, near its base points). Either start is refined and certified the same way, so the
 // statuses are the same; t agrees to the accuracy bound. With the fast path (and refine); with
 // refine false, formula reports N/M itself where it can (InvertOptions::algebraic).
-enum class Algebraic : std::uint8_t { bezout, formula };
+// automatic (the default): the formula on a curve close to one of lower degree (a smooth
+// function's graph: kNearLowerDegreeRatio), where B is nearly singular twice over at every point
+// and the null vector would send most points to the SVD path; bezout on every other curve, where
+// its lane-batched kernel is the faster. With refine false, automatic is bezout.
+enum class Algebraic : std::uint8_t { bezout, formula, automatic };
+
+// "bezout", "formula" or "auto" (the command's --algebraic, Python's algebraic=); false for any
+// other name, `algebraic` then unchanged.
+bool algebraic_named(std::string_view name, Algebraic& algebraic);
 
 // What an off_curve row's t is: the nearest point of the segment (found and proved by a search), or
 // the inversion formula's projection of the point, t = N(P0)/M(P0) (Wang & Joe, Sect. 4: for degree
@@ -82,7 +90,7 @@ struct InvertOptions {
   // With refine false and formula: t = N/M itself where the formula is valid at the point and the
   // point is within the tolerance of the segment there, isolated from any other branch (else the
   // SVD path's algebraic t, as with bezout).
-  Algebraic algebraic = Algebraic::bezout;
+  Algebraic algebraic = Algebraic::automatic;
   OffCurve off_curve = OffCurve::nearest;
 };
 

@@ -156,6 +156,21 @@ inline constexpr double kFormulaPathMaxCoordinate = 1e6;
 // separate denominators): the formula costs ~10 us to make at degree 3, ~80 ms at 20 (per plan,
 // once), and more above.
 inline constexpr int kFormulaPathMaxDegree = 20;
+// A curve close to one of degree n - 1 (each of its polynomials' top power coefficient below this
+// times power_leading_bound: a smooth function's graph, whose x(t) is linear and y(t)'s top
+// differences tiny) has p and q nearly sharing the root at infinity at every point, so B is
+// nearly singular twice over and the fast path's seed settles few of its points: measured on
+// graphs of exp at degrees 5-12, most points reached the SVD path from a ratio of 1e-7 to 5e-7
+// down and none from 1.3e-6 up. Algebraic::automatic takes the formula path on such a plan
+// (formula_path.hpp); 1e-4 leaves a margin of 100 above that onset, and random curves are at 1e-2
+// and above.
+inline constexpr double kNearLowerDegreeRatio = 1e-4;
+// A polynomial curve's direction e makes e . P(t) linear (PlanData::linear_formula) when e is
+// normal to every second difference of the control points to this fraction of their bound (the
+// rounding of an exactly linear coordinate after normalization, with room), and the line's slope
+// is at least kLinearDirectionMinSlope of the diagonal (else t is not well defined by e . P).
+inline constexpr double kLinearDirectionRatio = 1e-13;
+inline constexpr double kLinearDirectionMinSlope = 1e-3;
 
 // ---- A curve's size ----------------------------------------------------------------------------
 

@@ -97,12 +97,14 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
   if (two_passes) {
     // The common case of pass 1, for the whole batch first: a lane refined onto the segment within
     // the tolerance (the kernel clamps to [0, 1]) that the certificate's first test settles. The
-    // loop below would answer it the same way, at a higher cost per lane.
+    // loop below would answer it the same way, at a higher cost per lane. Where p and q both drop
+    // degree at the point, B's null vector is not the point's, but a start from the formula is as
+    // good as anywhere (a function's graph drops at every point: x(t) linear, y(t)'s top tiny).
     detail::isolated_by_far_boxes(plan, w.t_refined.data(), w.distance.data(), tolerance, count,
                                   w.certified.data());
     for (std::size_t l = 0; l < count; ++l)
-      if (w.certified[l] && w.active[l] && !w.drops[l] && std::isfinite(w.t_algebraic[l]) &&
-          w.distance[l] <= tolerance) {
+      if (w.certified[l] && w.active[l] && (!w.drops[l] || (formula && w.from_formula[l])) &&
+          std::isfinite(w.t_algebraic[l]) && w.distance[l] <= tolerance) {
         w.active[l] = 0;
         answer_fast(plan, w.t_refined[l], w.distance[l], w.estimate[l], PointResult::nan, results[l], path_of(l));
       }

@@ -40,15 +40,20 @@ const FormulaPathData& formula_path_data(const PlanData& plan) {
   });
 }
 
+const FormulaPathData& fast_path_formula(const PlanData& plan) {
+  return plan.linear_formula.usable ? plan.linear_formula : formula_path_data(plan);
+}
+
 bool takes_formula_path(const PlanData& plan, const InvertOptions& options) {
-  return options.algebraic == Algebraic::formula && takes_fast_path(plan, options) && plan.degree >= 3 &&
-         formula_path_data(plan).usable;
+  const bool asked = options.algebraic == Algebraic::formula ||
+                     (options.algebraic == Algebraic::automatic && plan.near_lower_degree);
+  return asked && takes_fast_path(plan, options) && plan.degree >= 3 && fast_path_formula(plan).usable;
 }
 
 bool reports_formula_unrefined(const PlanData& plan, const InvertOptions& options) {
   // (Degree 1 has no B to form late: a line's parameter is read directly.)
   return !options.refine && options.algebraic == Algebraic::formula && plan.degree >= 2 &&
-         formula_path_data(plan).usable;
+         fast_path_formula(plan).usable;
 }
 
 bool forms_b_late(const PlanData& plan, const InvertOptions& options) {
@@ -90,7 +95,7 @@ double formula_parameter(const FormulaPathData& f, double u, double v) {
 
 void formula_or_seed(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                      BatchWorkspace& w) {
-  const FormulaPathData& f = formula_path_data(plan);
+  const FormulaPathData& f = fast_path_formula(plan);
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
   std::size_t seeded = 0;
@@ -137,7 +142,7 @@ void formula_or_seed(const PlanData& plan, const Point* points, PointResult* res
 
 void formula_unrefined(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
                        PointResult* results) {
-  const FormulaPathData& f = formula_path_data(plan);
+  const FormulaPathData& f = fast_path_formula(plan);
   const double tolerance = normalized_tolerance(plan, options);
   for (std::size_t l = 0; l < count; ++l) {
     if (!w.active[l]) continue;

@@ -12,6 +12,10 @@
 
 namespace bezinv::detail {
 
+// The formula the formula path evaluates: the plan's linear one where it has one (a function's
+// graph: PlanData::linear_formula), else the curve's inversion formula (formula_path_data).
+const FormulaPathData& fast_path_formula(const PlanData& plan);
+
 // Whether a batch of this plan takes the formula path (with the fast path, degrees 3 ..
 // kFormulaPathMaxDegree, where the plan's formula exists and is accurate on the segment).
 bool takes_formula_path(const PlanData& plan, const InvertOptions& options);
