@@ -16,8 +16,10 @@ namespace bezinv::detail {
 // graph: PlanData::linear_formula), else the curve's inversion formula (formula_path_data).
 const FormulaPathData& fast_path_formula(const PlanData& plan);
 
-// Whether a batch of this plan takes the formula path (with the fast path, degrees 3 ..
-// kFormulaPathMaxDegree, where the plan's formula exists and is accurate on the segment).
+// Whether a batch of this plan takes the formula path: asked for (Algebraic::formula, or automatic
+// on a plan close to a lower degree), with the fast path, from degree 3, where the plan has a
+// formula: its linear one (any degree), or the curve's, made and accurate on the segment (up to
+// kFormulaPathMaxDegree).
 bool takes_formula_path(const PlanData& plan, const InvertOptions& options);
 
 // Whether refine is off and the formula asked for (InvertOptions::algebraic), and the plan has one:
