@@ -124,7 +124,8 @@ struct PlanData {
   // every point of it, and its points are inverted from the roots of p (engine/src/pipeline/decide.cpp).
   bool straight_line = false;
   // The curve is close to one of degree n - 1 (kNearLowerDegreeRatio): B is nearly singular twice
-  // over at every point, and Algebraic::automatic takes the formula path (formula_path.hpp).
+  // over at every point, and Algebraic::automatic takes the formula path where linear_formula is
+  // usable (formula_path.hpp).
   bool near_lower_degree = false;
   // A polynomial curve with a direction e along which e . P(t) is linear in t (a function's graph
   // y = f(x) with x(t) linear, and its rotations): t = (e . P - e . P(0)) / (e . P'), an inversion

@@ -46,9 +46,10 @@ enum class Path : std::uint8_t {
 // statuses are the same; t agrees to the accuracy bound. With the fast path (and refine); with
 // refine false, formula reports N/M itself where it can (InvertOptions::algebraic).
 // automatic (the default): the formula on a curve close to one of lower degree (a smooth
-// function's graph: kNearLowerDegreeRatio), where B is nearly singular twice over at every point
-// and the null vector would send most points to the SVD path; bezout on every other curve, where
-// its lane-batched kernel is the faster. With refine false, automatic is bezout.
+// function's graph: kNearLowerDegreeRatio) that has a linear one (a polynomial curve linear in t
+// along a direction), where B is nearly singular twice over at every point and the null vector
+// would send most points to the SVD path; bezout on every other curve, where its lane-batched
+// kernel is the faster. With refine false, automatic is bezout.
 enum class Algebraic : std::uint8_t { bezout, formula, automatic };
 
 // "bezout", "formula" or "auto" (the command's --algebraic, Python's algebraic=); false for any

@@ -45,8 +45,11 @@ const FormulaPathData& fast_path_formula(const PlanData& plan) {
 }
 
 bool takes_formula_path(const PlanData& plan, const InvertOptions& options) {
+  // automatic: the linear formula only, made with the plan; the curve's own is made per plan on
+  // first use (up to ~80 ms at degree 20), which a file of many curves would pay for each.
   const bool asked = options.algebraic == Algebraic::formula ||
-                     (options.algebraic == Algebraic::automatic && plan.near_lower_degree);
+                     (options.algebraic == Algebraic::automatic && plan.near_lower_degree &&
+                      plan.linear_formula.usable);
   return asked && takes_fast_path(plan, options) && plan.degree >= 3 && fast_path_formula(plan).usable;
 }
 

@@ -17,9 +17,9 @@ namespace bezinv::detail {
 const FormulaPathData& fast_path_formula(const PlanData& plan);
 
 // Whether a batch of this plan takes the formula path: asked for (Algebraic::formula, or automatic
-// on a plan close to a lower degree), with the fast path, from degree 3, where the plan has a
-// formula: its linear one (any degree), or the curve's, made and accurate on the segment (up to
-// kFormulaPathMaxDegree).
+// on a plan close to a lower degree that has a linear formula), with the fast path, from degree 3,
+// where the plan has a formula: its linear one (any degree), or the curve's, made and accurate on
+// the segment (up to kFormulaPathMaxDegree).
 bool takes_formula_path(const PlanData& plan, const InvertOptions& options);
 
 // Whether refine is off and the formula asked for (InvertOptions::algebraic), and the plan has one:
