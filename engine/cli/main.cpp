@@ -53,6 +53,9 @@ constexpr long long kMaxThreads = 1024;
 // --chunk-points above this is refused: about 100 bytes a point, so 1.7 GB of buffers in flight.
 constexpr std::size_t kMaxChunkPoints = std::size_t{1} << 24;
 
+// The names bezinv::algebraic_named reads, for --algebraic of invert and profile.
+const std::vector<std::string> kAlgebraicNames{"auto", "bezout", "formula"};
+
 struct InvertArguments {
   std::string curves_path, points_path, out_path;
   double relative_tolerance = bezinv::kDefaultRelativeTolerance;
@@ -287,7 +290,7 @@ int main(int argc, char** argv) {
                      "The fast path's algebraic step: bezout (B's null vector), formula (the curve's inversion "
                      "formula N/M where it is valid, path formula; with --no-refine, N/M itself) or auto (formula "
                      "on a curve close to a lower degree, such as a smooth function's graph; bezout elsewhere)")
-      ->check(CLI::IsMember({"auto", "bezout", "formula"}))
+      ->check(CLI::IsMember(kAlgebraicNames))
       ->capture_default_str();
   std::string invert_rows;
   invert->add_option("--rows", invert_rows,
@@ -356,7 +359,7 @@ int main(int argc, char** argv) {
   profile->add_flag("--svd-only", profile_svd_only, "Every point by the SVD (no LU fast path)");
   std::string profile_algebraic = "auto";
   profile->add_option("--algebraic", profile_algebraic, "The fast path's algebraic step: auto, bezout or formula")
-      ->check(CLI::IsMember({"auto", "bezout", "formula"}))
+      ->check(CLI::IsMember(kAlgebraicNames))
       ->capture_default_str();
   std::string profile_off_curve = "nearest";
   profile->add_option("--off-curve", profile_off_curve, "An off_curve row's t: nearest or projection")

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -217,7 +218,7 @@ TEST(OrdinaryCurves, SmoothGraphsTakeTheLinearFormulaWithTheSvdPathsAnswers) {
           for (double offset : {1e-9, 1e-7, 1e-5, 1e-3})
             for (int k = 0; k < 4; ++k) {
               const Point p = known_at(exact, datasets::uniform(rng, 0.0, 1.0)).point;
-              const double angle = datasets::uniform(rng, 0.0, 2 * std::acos(-1.0));
+              const double angle = datasets::uniform(rng, 0.0, 2 * std::numbers::pi);
               const double r = offset * std::sqrt(2.0);  // the polygon's diagonal is about sqrt(2)
               points.push_back({p.x + r * std::cos(angle), p.y + r * std::sin(angle)});
             }

@@ -162,8 +162,8 @@ inline constexpr int kFormulaPathMaxDegree = 20;
 // nearly singular twice over and the fast path's seed settles few of its points: measured on
 // graphs of exp at degrees 5-12, most points reached the SVD path from a ratio of 1e-7 to 5e-7
 // down and none from 1.3e-6 up. Algebraic::automatic takes the formula path on such a plan where
-// it has a linear formula (formula_path.hpp); 1e-4 leaves a margin of 100 above that onset, and random curves are at 1e-2
-// and above.
+// it has a linear formula (formula_path.hpp); 1e-4 leaves a margin of 100 above that onset, and
+// random curves are at 1e-2 and above.
 inline constexpr double kNearLowerDegreeRatio = 1e-4;
 // A polynomial curve's direction e makes e . P(t) linear (PlanData::linear_formula) when e is
 // normal to every second difference of the control points to this fraction of their bound (the
