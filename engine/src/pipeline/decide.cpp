@@ -1,6 +1,6 @@
 #include "pipeline/decide.hpp"
 
-#include <Eigen/QR>
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -10,6 +10,7 @@
 #include "bezinv/null_vector.hpp"
 #include "degree_drop.hpp"
 #include "isolation.hpp"
+#include "orthogonal_complement.hpp"
 #include "pipeline/far_point.hpp"
 #include "pipeline/pair_check.hpp"
 #include "pipeline/point_polynomials.hpp"
@@ -58,13 +59,11 @@ int bernstein_roots(std::span<const double> r, std::span<double> t) {
     t[0] = r[0] / (r[0] - r[1]);
     return 1;
   }
-  Eigen::Map<const Eigen::VectorXd> coefficients(r.data(), size);
-  if (!(coefficients.norm() > 0.0)) return 0;
-  const Eigen::MatrixXd column = coefficients;
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(column);
-  const Eigen::MatrixXd q = qr.householderQ();  // column 0 along r, the others span r^perp
-  return parameters_from_null_space(std::span<const double>(q.data() + size, static_cast<std::size_t>(size) * (size - 1)),
-                                    size - 1, t);
+  if (!(Eigen::Map<const Eigen::VectorXd>(r.data(), size).norm() > 0.0)) return 0;
+  std::array<double, (kMaxDegree + 1) * kMaxDegree> perp;
+  const auto perp_size = static_cast<std::size_t>(size) * (size - 1);
+  orthogonal_complement(r, std::span<double>(perp.data(), perp_size));
+  return parameters_from_null_space(std::span<const double>(perp.data(), perp_size), size - 1, t);
 }
 
 // Whether P0 is reached at t1 and t2 by separate branches of the curve: somewhere between them

@@ -38,7 +38,8 @@ double sylvester_parameter(const PointPolynomials& pq) {
   Matrix S(size, size);
   sylvester_matrix(std::span<const double>(p.data(), m + 1), std::span<const double>(q.data(), k + 1),
                    std::span<double>(S.data(), static_cast<std::size_t>(size) * size));
-  Eigen::JacobiSVD<Matrix> svd(S, Eigen::ComputeFullU);
+  // S is square, so no QR preconditioning would run: none is compiled.
+  Eigen::JacobiSVD<Matrix, Eigen::NoQRPreconditioner> svd(S, Eigen::ComputeFullU);
   const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxSize, 1> z = svd.matrixU().col(size - 1);  // v^T S = 0
   return parameter_from_null_vector(std::span<const double>(z.data(), size));
 }
