@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "support/run_bezinv.hpp"
+#include "support/sanitizers.hpp"
 #include "support/scratch_directory.hpp"
 
 namespace {
@@ -29,18 +30,6 @@ namespace fs = std::filesystem;
 using bezinv::test_support::quoted;
 using bezinv::test_support::read_file;
 using bezinv::test_support::ScratchDirectory;
-
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
 
 // Room for a normal run and for reading CURVES.json up to its cap, far below what the hostile
 // files claim (4 GiB headers, 2^64-byte shapes, endless lines).
@@ -67,7 +56,7 @@ class CliHostileInput : public ::testing::Test {
   Refusal run(const std::string& arguments, const std::string& setup = "") const {
     const std::string err = scratch.path("stderr.txt");
     std::string command = setup + "timeout 120 ";
-    if (!kAddressSanitizer) command += std::string("prlimit --as=") + kAddressSpace + " ";
+    if (!bezinv::test_support::kSanitizerTree) command += std::string("prlimit --as=") + kAddressSpace + " ";
     command += std::string("'") + BEZINV_CLI_PATH + "' " + arguments + " >/dev/null 2>'" + err + "'";
     const int status = std::system(command.c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(err)};

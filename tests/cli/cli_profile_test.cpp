@@ -7,6 +7,7 @@
 #include <string>
 
 #include "support/run_bezinv.hpp"
+#include "support/sanitizers.hpp"
 #include "support/scratch_directory.hpp"
 
 namespace {
@@ -16,21 +17,24 @@ using bezinv::test_support::ScratchDirectory;
 
 TEST(CliProfile, JsonReportsThroughputAndEveryOnCurvePointOk) {
   ScratchDirectory scratch{"bezinv-profile-test-"};
+  // Fewer points under the sanitizers (support/sanitizers.hpp): the same stages and paths.
+  const int points = bezinv::test_support::kSanitizerTree ? 600 : 3000;
   for (const char* kind : {"bezier", "rational_bezier", "rational"}) {
     for (int degree : {1, 3, 8, 20}) {
       const auto run = run_bezinv(scratch, std::string("profile --kind ") + kind + " --degree " +
-                                               std::to_string(degree) + " --points 3000 --threads 2 --json");
+                                               std::to_string(degree) + " --points " + std::to_string(points) +
+                                               " --threads 2 --json");
       ASSERT_EQ(run.exit_code, 0) << kind << " " << degree << ": " << run.err;
       const auto report = nlohmann::json::parse(run.out);
       EXPECT_GT(report.at("points_per_second").get<double>(), 0.0);
       EXPECT_EQ(report.at("degree").get<int>(), degree);
       EXPECT_EQ(report.at("threads").get<int>(), 2);
       EXPECT_FALSE(report.at("kernel").get<std::string>().empty());
-      EXPECT_EQ(report.at("points").get<int>(), 3000);
+      EXPECT_EQ(report.at("points").get<int>(), points);
       // Exact points (P(t) in double): all ok. The t error bound is generous (rounding of P(t) is
       // ~1e-16 of the curve size; a parameter is off by that over the speed |P'|, which on these
       // arcs stays above 1e-3 of the size) and still fails on any wrong branch or stalled Newton.
-      EXPECT_EQ(report.at("ok").get<int>(), 3000) << kind << " degree " << degree;
+      EXPECT_EQ(report.at("ok").get<int>(), points) << kind << " degree " << degree;
       EXPECT_LE(report.at("max_abs_dt_ok").get<double>(), 1e-10) << kind << " degree " << degree;
       for (const char* stage : {"form_b", "kernel", "read_out", "refine", "decide"})
         EXPECT_GT(report.at("stages_points_per_second").at(stage).get<double>(), 0.0) << stage;

@@ -7,6 +7,10 @@ import subprocess
 import numpy as np
 import pytest
 
+# Set by CMake in the sanitizer tree, where the engine runs 5-20x slower: the heaviest tests then
+# invert fewer points along the same paths.
+SANITIZER_TREE = os.environ.get("BEZINV_SANITIZER_TREE") == "1"
+
 
 @pytest.fixture
 def cli():

@@ -1,6 +1,10 @@
 #pragma once
-// The heaviest property tests draw fewer random cases under AddressSanitizer (the sanitizer tree
-// of scripts/test.sh, where the engine runs 5-20x slower): the sanitizers look for what goes
+// Whether bezinv runs under AddressSanitizer and UndefinedBehaviorSanitizer here (the tree of
+// scripts/test.sh, where the engine runs 5-20x slower). The test files themselves are compiled
+// without the sanitizers in that tree (tests/CMakeLists.txt), so the compiler's own macro does not
+// say it: the build defines BEZINV_SANITIZER_TREE.
+//
+// The heaviest property tests draw fewer random cases there: the sanitizers look for what goes
 // wrong on a code path, and a fraction of the cases walks the same paths (every degree, kind and
 // kernel size is kept; the tests that thin say how). The Release tree (`scripts/test.sh --release`)
 // runs every case.
@@ -8,18 +12,19 @@
 
 namespace bezinv::test_support {
 
-// GCC says so by __SANITIZE_ADDRESS__, clang (before 15) by __has_feature only.
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr int kSanitizerThinning = 4;
+#if defined(BEZINV_SANITIZER_TREE) || defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kSanitizerTree = true;
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
-inline constexpr int kSanitizerThinning = 4;
+inline constexpr bool kSanitizerTree = true;
 #else
-inline constexpr int kSanitizerThinning = 1;
+inline constexpr bool kSanitizerTree = false;
 #endif
 #else
-inline constexpr int kSanitizerThinning = 1;
+inline constexpr bool kSanitizerTree = false;
 #endif
+
+inline constexpr int kSanitizerThinning = kSanitizerTree ? 4 : 1;
 
 // Whether case number `index` is left out in this build: none in Release, all but one in
 // kSanitizerThinning under the sanitizers.
