@@ -803,7 +803,8 @@ TEST(InvertProperty, OffTheCurveAnswersWithoutTheSvdAreTheSvdPathsAnswers) {
       std::mt19937_64 rng(seed);
       const Curve curve = datasets::random_curve(kind, degree, rng, ControlPolygon::unit_square);
       const InversionPlan plan = make_plan(curve);
-      for (int k = 0; k < 80; ++k) {
+      // A quarter of the points under the sanitizers (support/sanitizers.hpp).
+      for (int k = 0; k < 80 / test_support::kSanitizerThinning; ++k) {
         // Along the normal at a random t, 1e-4 to 1e-1 of the curve's size (log-uniform), either side.
         const double t = datasets::uniform(rng, 0.0, 1.0);
         const Point on = datasets::on_curve(curve, t), ahead = datasets::on_curve(curve, t + 1e-6);
@@ -831,8 +832,8 @@ TEST(InvertProperty, OffTheCurveAnswersWithoutTheSvdAreTheSvdPathsAnswers) {
   RecordProperty("rows", rows);
   RecordProperty("fast_off_curve", fast_off_curve);
   RecordProperty("outside_segment", outside_segment);
-  EXPECT_GT(fast_off_curve, 2000);  // the comparison is not vacuous
-  EXPECT_GT(outside_segment, 10);  // nor is the extension's part
+  EXPECT_GT(fast_off_curve, 2000 / test_support::kSanitizerThinning);  // the comparison is not vacuous
+  EXPECT_GT(outside_segment, 10 / test_support::kSanitizerThinning);  // nor is the extension's part
 }
 
 // ---- the paper's algebraic parameter ---------------------------------------------------------------
