@@ -3,6 +3,7 @@
 // independently: the homogeneous form sum c_i C(n,i) (1-t)^(n-i) t^i in long double at each t,
 // scaled by 1/|t| far out so nothing overflows (not the engine's reparametrization in s).
 #include "support/curve_kinds.hpp"
+#include "support/sanitizers.hpp"
 #include "extension.hpp"
 
 #include <gtest/gtest.h>
@@ -86,7 +87,8 @@ TEST(Extension, NeverClearWhereThePointIsWithinTheRadiusOfTheExtension) {
         const detail::PlanData plan = detail::plan_data(make_plan(datasets::random_curve(kind, n, rng, polygon)));
         std::vector<std::array<Real, 2>> grid;
         for (Real t : ts) grid.push_back(extension_point(plan, t));
-        for (int i = 0; i < 10; ++i) {
+        // Half the points under the sanitizers (support/sanitizers.hpp).
+        for (int i = 0; i < (test_support::kSanitizerTree ? 5 : 10); ++i) {
           // Around the segment and around its extension, 1e-4 to 1 of the curve's size away.
           const Real t0 = datasets::uniform(rng, -0.6, 1.6);
           const auto base = extension_point(plan, t0);

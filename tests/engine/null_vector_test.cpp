@@ -20,6 +20,7 @@
 #include "null_vector_read_out.hpp"
 #include "support/exact.hpp"
 #include "support/measure.hpp"
+#include "support/sanitizers.hpp"
 
 namespace bezinv {
 namespace {
@@ -41,7 +42,8 @@ double norm(const std::vector<double>& z) {
 TEST(ParameterFromNullVector, RecoversParameterOfScaledBasisVectors) {
   std::mt19937_64 rng(53);
   std::vector<double> ts{1e-3, 0.01, 0.5, 0.99, 0.999, -0.5, 1.7, -2.0, 3.0};
-  for (int k = 0; k < 40; ++k) ts.push_back(datasets::uniform(rng, 0.0, 1.0));
+  // A quarter of the random parameters under the sanitizers (support/sanitizers.hpp).
+  for (int k = 0; k < 40 / test_support::kSanitizerThinning; ++k) ts.push_back(datasets::uniform(rng, 0.0, 1.0));
   double worst = 0.0;
   for (int N = 1; N <= 31; ++N)
     for (double t : ts)
