@@ -305,6 +305,31 @@ std::optional<StressCurve> stress_curve(Family family, CurveKind kind, int degre
       c.space = lifted;
       return c;
     }
+    case Family::graphs: {
+      const int f = index % 3;
+      auto ordinate = [f](double x) { return f == 0 ? std::sin(3 * x) : f == 1 ? std::exp(x) : 1 / (1 + 4 * x * x); };
+      // Turned by a random angle on every other curve (not kind rational: a turn mixes separate
+      // denominators), so that no coordinate is the linear one.
+      const double angle = index % 2 && kind != CurveKind::rational ? uniform(rng, 0.0, 2 * std::numbers::pi) : 0.0;
+      const double cos_a = std::cos(angle), sin_a = std::sin(angle);
+      std::vector<std::array<double, 2>> points(degree + 1);
+      std::vector<double> w(degree + 1);
+      for (int i = 0; i <= degree; ++i) {
+        const double u = static_cast<double>(i) / degree, v = ordinate(u);
+        points[i] = {cos_a * u - sin_a * v, sin_a * u + cos_a * v};
+        w[i] = uniform(rng, 0.5, 2.0);
+      }
+      if (kind == CurveKind::bezier) {
+        c.curve = Curve::bezier("graphs", points);
+      } else if (kind == CurveKind::rational_bezier) {
+        c.curve = Curve::rational_bezier("graphs", points, w);
+      } else {
+        std::vector<double> x(degree + 1), x_den(degree + 1, 1.0), yw(degree + 1);
+        for (int i = 0; i <= degree; ++i) x[i] = points[i][0], yw[i] = points[i][1] * w[i];
+        c.curve = Curve::rational("graphs", x, x_den, yw, w);
+      }
+      return c;
+    }
     case Family::papers: {
       if (index != 0) return std::nullopt;  // one curve: they are fixed
       if (kind == CurveKind::rational && degree == 4) c.curve = paper_example1_curve();
@@ -337,6 +362,7 @@ const char* to_string(Family family) {
     case Family::papers: return "papers";
     case Family::matrix_weighted: return "matrix_weighted";
     case Family::space: return "space";
+    case Family::graphs: return "graphs";
   }
   return "?";
 }
@@ -366,6 +392,12 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
     std::vector<StressRow> rows;
     for (const KnownPoint& k : near_cusp_points(sampling, stress_curve.t1, count, rng))
       rows.push_back(cusp_row(curve, k, stress_curve.t1, diagonal, tolerance));
+    return rows;
+  }
+  if (family == Family::graphs) {
+    std::vector<StressRow> rows = stress_rows(Family::on_curve, stress_curve, sampling, count / 2, relative_tolerance, rng);
+    std::vector<StressRow> off = stress_rows(Family::noisy, stress_curve, sampling, count - count / 2, relative_tolerance, rng);
+    rows.insert(rows.end(), off.begin(), off.end());
     return rows;
   }
   if (family == Family::space) {
@@ -418,6 +450,7 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
     case Family::matrix_weighted:
     case Family::papers: known = segment_points(sampling, count, rng); break;
     case Family::space: break;
+    case Family::graphs: break;
     case Family::improper: known = improper_points(sampling, count, rng); break;
     case Family::cusps: break;
     case Family::crossings: break;

@@ -50,7 +50,8 @@ TEST(CliStress, EveryCellReportedAndEveryStatusRight) {
 TEST(CliStress, SpecialCurvesFamiliesAllRight) {
   ScratchDirectory scratch{"bezinv-stress-test-"};
   const auto run = run_bezinv(scratch,
-                              "stress --families crossings,translated,elevated,improper,weights,papers,matrix_weighted,space --degrees 3-4 "
+                              "stress --families crossings,translated,elevated,improper,weights,papers,matrix_weighted,space,graphs "
+                              "--degrees 3-4 "
                               "--points 2400 --curves 2 --json");
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out.substr(0, 2000);
   const auto report = nlohmann::json::parse(run.out);
@@ -63,8 +64,24 @@ TEST(CliStress, SpecialCurvesFamiliesAllRight) {
       double_points += cell.at("confusion").at("double_point").value("double_point", 0);
   }
   EXPECT_EQ(families, (std::set<std::string>{"crossings", "translated", "elevated", "improper", "weights", "papers",
-                                             "matrix_weighted", "space"}));
+                                             "matrix_weighted", "space", "graphs"}));
   EXPECT_GT(double_points, 0) << "the crossings must include points within the tolerance of both branches";
+}
+
+// Graphs of smooth functions at the degrees where they lie within rounding of a lower degree (the
+// formula path's curves): every status right, every t within the accuracy model's bound.
+TEST(CliStress, GraphsOfFunctionsAtHighDegreeAllRight) {
+  ScratchDirectory scratch{"bezinv-stress-test-"};
+  const auto run = run_bezinv(scratch, "stress --families graphs --degrees 8-20 --points 1300 --curves 2 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out.substr(0, 2000);
+  const auto report = nlohmann::json::parse(run.out);
+  int cells = 0;
+  for (const auto& cell : report.at("cells")) {
+    ++cells;
+    EXPECT_EQ(cell.at("wrong_status").get<int>(), 0) << cell.dump();
+    EXPECT_LE(cell.at("abs_dt_over_bound").at("max").get<double>(), 4.0) << cell.dump();
+  }
+  EXPECT_EQ(cells, 3 * 13);  // every kind and degree
 }
 
 // --report DIR: summary.json is the --json object; index.html is well-formed (an XML parser reads

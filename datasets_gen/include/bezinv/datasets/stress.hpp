@@ -45,6 +45,11 @@
 //              plane is the nearest point to the point's foot in the plane, so the plane truth holds
 //              (t the same, distance sqrt(d^2 + h^2)); statuses for the tolerance relative to the
 //              space curve's box. Status ok, or off_curve.
+//   graphs     graphs of smooth functions y = f(x) (sin 3x, e^x, the easing curve 1/(1 + 4x^2)),
+//              control points (i/n, f(i/n)), every other one turned by a random angle; weights
+//              0.5..2 (rational_bezier; rational: the weights on y alone, so x stays polynomial).
+//              The curves people draw, which from degree ~7 lie within rounding of a lower degree
+//              (the engine's formula path): on_curve's and noisy's rows. Status ok, or off_curve.
 //   papers     the papers' curves where kind and degree match (Marco & Martinez's Examples 1, 2
 //              and 4, and the demo's cubic), on_curve's points. Status ok.
 // Every generated point is isolated from the curve's other branches (datasets/known_point.hpp).
@@ -68,12 +73,13 @@ namespace bezinv::datasets {
 
 enum class Family {
   on_curve, near_ends, extension, noisy, far, crossings, cusps, translated, tiny, elevated, improper, weights,
-  papers, matrix_weighted, space
+  papers, matrix_weighted, space, graphs
 };
 inline constexpr std::array kFamilies = {Family::on_curve,   Family::near_ends, Family::extension, Family::noisy,
                                          Family::far,        Family::crossings, Family::cusps,     Family::translated,
                                          Family::tiny,       Family::elevated,  Family::improper,  Family::weights,
-                                         Family::papers,     Family::matrix_weighted, Family::space};
+                                         Family::papers,     Family::matrix_weighted, Family::space,
+                                         Family::graphs};
 const char* to_string(Family family);
 std::optional<Family> family_from_string(std::string_view name);
 
