@@ -53,6 +53,14 @@ struct SpaceData {
   // coefficient i (times C(m, i), m = n - r) of polynomial j = num x, y, z, den x, y, z (6, 7
   // unused): one loop over i evaluates all six side by side.
   std::array<std::vector<double>, 3> interleaved;
+  // With one denominator D for x, y, z (kinds bezier and rational_bezier): P and P' in one Horner
+  // loop. Entry i * 8 + j, i = 0..n, is coefficient i of num x, y, z, D (j = 0..3) and of their
+  // derivatives (j = 4..7, degree n - 1), padded with a zero where the derivative has no
+  // coefficient: at i = n for the forward loop (first_order_forward), before i = 0 for the backward
+  // one (first_order_backward, shifted by one). The zero enters Horner's rule as 0 * s + c = c, so
+  // every value is the same double as from interleaved[0] and interleaved[1] separately. Empty for
+  // separate denominators.
+  std::vector<double> first_order_forward, first_order_backward;
   std::vector<double> samples;  // P at equally spaced t in [0, 1] (16 (n + 1) + 1 of them), normalized, x y z each
 };
 
