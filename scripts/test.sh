@@ -6,9 +6,10 @@
 #   bash scripts/test.sh --release   # then the Release tree too (build), where the property tests
 #                                    # draw all their cases (tests/support/sanitizers.hpp)
 #
-# One tree rather than two halves the time this takes. The sanitizers see every code path the
-# Release tree runs, and the answers are the same bits at both optimization levels (no
-# -ffast-math; no contraction into fused multiply-add where bits are compared).
+# One tree rather than two halves the time this takes. The sanitizers see every code path of
+# bezinv's that the Release tree runs (the test files and the Python bindings are compiled without
+# them: tests/CMakeLists.txt says why), and the answers are the same bits at both optimization
+# levels (no -ffast-math; no contraction into fused multiply-add where bits are compared).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 release=0
