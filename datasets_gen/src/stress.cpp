@@ -394,12 +394,14 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
       rows.push_back(cusp_row(curve, k, stress_curve.t1, diagonal, tolerance));
     return rows;
   }
-  if (family == Family::graphs) {
-    std::vector<StressRow> rows = stress_rows(Family::on_curve, stress_curve, sampling, count / 2, relative_tolerance, rng);
-    std::vector<StressRow> off = stress_rows(Family::noisy, stress_curve, sampling, count - count / 2, relative_tolerance, rng);
+  // Half on_curve's rows, half noisy's, at the relative tolerance `relative`.
+  const auto on_and_noisy_rows = [&](double relative) {
+    std::vector<StressRow> rows = stress_rows(Family::on_curve, stress_curve, sampling, count / 2, relative, rng);
+    std::vector<StressRow> off = stress_rows(Family::noisy, stress_curve, sampling, count - count / 2, relative, rng);
     rows.insert(rows.end(), off.begin(), off.end());
     return rows;
-  }
+  };
+  if (family == Family::graphs) return on_and_noisy_rows(relative_tolerance);
   if (family == Family::space) {
     // The plane rows at the space curve's tolerance, lifted (see stress.hpp).
     const Curve& lifted = *stress_curve.space;
@@ -412,9 +414,7 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
     const double diagonal3 = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                                        (hi[2] - lo[2]) * (hi[2] - lo[2]));
     const double relative = relative_tolerance * diagonal3 / diagonal;
-    std::vector<StressRow> rows = stress_rows(Family::on_curve, stress_curve, sampling, count / 2, relative, rng);
-    std::vector<StressRow> off = stress_rows(Family::noisy, stress_curve, sampling, count - count / 2, relative, rng);
-    rows.insert(rows.end(), off.begin(), off.end());
+    std::vector<StressRow> rows = on_and_noisy_rows(relative);
     for (StressRow& row : rows) {
       const double x = row.point.x, y = row.point.y;
       // Off the plane only where the status cannot change: rows off the curve beyond doubt.

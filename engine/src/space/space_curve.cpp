@@ -313,17 +313,34 @@ void interleaved_values(const SpaceData& space, int r, bool forward, double s, d
   for (int j = 0; j < 6; ++j) out[j] = v[j] * power;
 }
 
+// Where Horner's rule in s is taken at t in [0, 1] for a curve of degree n: s = t / (1 - t) forward
+// (t <= 1/2), else (1 - t) / t, and the factors u^n, u^(n-1), u^(n-2) of derivative orders 0, 1, 2
+// (u = 1 - t forward, else t; a power below 0 is of a zero polynomial: 1 does).
+struct HornerPoint {
+  bool forward;
+  double s;
+  double powers[3];
+};
+HornerPoint horner_point(int n, double t) {
+  HornerPoint h;
+  h.forward = t <= 0.5;
+  const double u = h.forward ? 1 - t : t;
+  h.s = h.forward ? t / u : (1 - t) / u;
+  double power = 1;
+  for (int i = 0; i < n - 2; ++i) power *= u;
+  h.powers[0] = n >= 2 ? power * u * u : n == 1 ? u : 1.0;
+  h.powers[1] = n >= 2 ? power * u : 1.0;
+  h.powers[2] = power;
+  return h;
+}
+
 // P and P' on [0, 1] with one denominator (SpaceData::first_order_forward): the same doubles as
 // space_jet's general evaluation, from one Horner loop and one division instead of two and three.
 SpaceJet first_order_jet(const SpaceData& space, double t) {
-  const bool forward = t <= 0.5;
-  const double u = forward ? 1 - t : t, s = forward ? t / u : (1 - t) / u;
-  const int n = space.degree;
-  double power = 1;
-  for (int i = 0; i < n - 2; ++i) power *= u;
-  const double power_0 = n >= 2 ? power * u * u : n == 1 ? u : 1.0, power_1 = n >= 2 ? power * u : 1.0;
+  const HornerPoint h = horner_point(space.degree, t);
+  const double power_0 = h.powers[0], power_1 = h.powers[1];
   double v[8];
-  horner8(forward ? space.first_order_forward : space.first_order_backward, n, forward, s, v);
+  horner8(h.forward ? space.first_order_forward : space.first_order_backward, space.degree, h.forward, h.s, v);
   const double D = v[3] * power_0, D1 = v[7] * power_1;
   const double inverse = 1 / D;
   SpaceJet j{};
@@ -345,14 +362,8 @@ SpaceJet space_jet(const SpaceData& space, double t, int orders) {
   }
   double value[3][6] = {};  // [derivative order][num x, y, z, den x, y, z] (orders not asked for: 0)
   if (t >= 0.0 && t <= 1.0) {
-    const bool forward = t <= 0.5;
-    const double u = forward ? 1 - t : t, s = forward ? t / u : (1 - t) / u;
-    // u^(n-2), u^(n-1), u^n (a power below 0 is of a zero polynomial: 1 does)
-    const int n = space.degree;
-    double power = 1;
-    for (int i = 0; i < n - 2; ++i) power *= u;
-    const double powers[3] = {n >= 2 ? power * u * u : n == 1 ? u : 1.0, n >= 2 ? power * u : 1.0, power};
-    for (int r = 0; r < orders; ++r) interleaved_values(space, r, forward, s, powers[r], value[r]);
+    const HornerPoint h = horner_point(space.degree, t);
+    for (int r = 0; r < orders; ++r) interleaved_values(space, r, h.forward, h.s, h.powers[r], value[r]);
   } else {  // the extension: de Casteljau (SpacePolynomial's own evaluation)
     for (int k = 0; k < 3; ++k) {
       value[0][k] = space.num[k](t), value[0][3 + k] = space.den[k](t);
