@@ -11,8 +11,6 @@
 namespace bezinv::datasets {
 namespace {
 
-constexpr int kAttemptsPerPoint = 20;
-
 // The offset may reach this fraction of the radius of curvature on its side: at d = rho the
 // distance function is flat at t0 (the centre of curvature), below it t0 is a strict local minimum.
 constexpr Real kCurvatureFraction = 0.5L;

@@ -10,9 +10,6 @@
 namespace bezinv::datasets {
 namespace {
 
-// Attempts per requested point before a set gives up on a curve.
-constexpr int kAttemptsPerPoint = 20;
-
 // A minimum of the distance belongs to the branch at parameter `own` when it is this close to it
 // (the refinement of a minimum lands within ~1e-9).
 bool same_parameter(Real t, double own) { return std::abs(t - own) <= 1e-6L * std::max<Real>(1, std::abs(own)); }

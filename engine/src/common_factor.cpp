@@ -98,7 +98,7 @@ int gcd_degree_modulo_prime(std::initializer_list<std::span<const double>> polyn
 
 using Poly = std::vector<mpq_class>;  // power basis, a_0 first
 
-mpz_class binomial(int n, int k) {
+mpz_class exact_binomial(int n, int k) {
   mpz_class c;
   mpz_bin_uiui(c.get_mpz_t(), static_cast<unsigned long>(n), static_cast<unsigned long>(k));
   return c;
@@ -110,10 +110,10 @@ Poly power_coefficients(std::span<const double> bernstein) {
   for (int k = 0; k <= n; ++k) {
     mpq_class s = 0;
     for (int i = 0; i <= k; ++i) {
-      const mpq_class term = mpq_class(binomial(k, i)) * mpq_class(bernstein[i]);  // a double is exact in mpq
+      const mpq_class term = mpq_class(exact_binomial(k, i)) * mpq_class(bernstein[i]);  // a double is exact in mpq
       if ((k - i) % 2 == 0) s += term; else s -= term;
     }
-    a[k] = mpq_class(binomial(n, k)) * s;
+    a[k] = mpq_class(exact_binomial(n, k)) * s;
   }
   return a;
 }
@@ -162,7 +162,7 @@ std::vector<double> bernstein_quotient(std::span<const double> p, const Poly& g,
   for (int i = 0; i <= m; ++i) {
     mpq_class s = 0;
     for (int k = 0; k <= i && k < static_cast<int>(quotient.size()); ++k)
-      s += mpq_class(binomial(i, k)) / mpq_class(binomial(m, k)) * quotient[k];
+      s += mpq_class(exact_binomial(i, k)) / mpq_class(exact_binomial(m, k)) * quotient[k];
     b[i] = s.get_d();
   }
   return b;

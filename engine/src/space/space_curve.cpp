@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "bernstein_arithmetic.hpp"
 #include "bezinv/bernstein.hpp"
 #include "plan_data.hpp"
 #include "bezinv/tolerances.hpp"
@@ -14,35 +15,16 @@
 namespace bezinv::detail {
 namespace {
 
-// Bernstein coefficients of the derivative (degree n - 1): n (c_{i+1} - c_i); {0} for a constant.
-std::vector<double> derivative(const std::vector<double>& c) {
-  const int n = static_cast<int>(c.size()) - 1;
-  if (n < 1) return {0.0};
-  std::vector<double> d(n);
-  for (int i = 0; i < n; ++i) d[i] = n * (c[i + 1] - c[i]);
-  return d;
-}
-
 // The product of two Bernstein polynomials (degrees m and n, result m + n):
-// c_k = sum_{i + j = k} C(m, i) C(n, j) / C(m + n, k) a_i b_j.
-std::vector<double> product(const std::vector<double>& a, const std::vector<double>& b) {
+// c_k = sum_{i + j = k} C(m, i) C(n, j) a_i b_j / C(m + n, k), each sum divided once (the
+// numerators of the pencil below; bernstein_arithmetic.hpp's product divides term by term).
+std::vector<double> product_summed(const std::vector<double>& a, const std::vector<double>& b) {
   const int m = static_cast<int>(a.size()) - 1, n = static_cast<int>(b.size()) - 1;
   std::vector<double> c(m + n + 1, 0.0);
   for (int i = 0; i <= m; ++i)
     for (int j = 0; j <= n; ++j) c[i + j] += binomial(m, i) * binomial(n, j) * a[i] * b[j];
   for (int k = 0; k <= m + n; ++k) c[k] /= binomial(m + n, k);
   return c;
-}
-
-std::vector<double> sum(const std::vector<double>& a, const std::vector<double>& b) {
-  std::vector<double> c(a.size());
-  for (std::size_t i = 0; i < a.size(); ++i) c[i] = a[i] + b[i];
-  return c;
-}
-
-std::vector<double> scaled(std::vector<double> a, double s) {
-  for (double& v : a) v *= s;
-  return a;
 }
 
 // Eigenvectors of the symmetric 3 x 3 matrix m (cyclic Jacobi rotations), as the columns of v,
@@ -189,9 +171,9 @@ SpaceData make_space_data(const Curve& curve) {
       den[i] = (*dens[k])[i] / largest;
       num[i] = (*nums[k])[i] / largest * space.inverse_scale - space.centre[k] * space.inverse_scale * den[i];
     }
-    const std::vector<double> d_num = derivative(num), d_den = derivative(den);
-    space.dd_num[k] = SpacePolynomial(derivative(d_num));
-    space.dd_den[k] = SpacePolynomial(derivative(d_den));
+    const std::vector<double> d_num = derivative(num, false), d_den = derivative(den, false);
+    space.dd_num[k] = SpacePolynomial(derivative(d_num, false));
+    space.dd_den[k] = SpacePolynomial(derivative(d_den, false));
     space.d_num[k] = SpacePolynomial(d_num);
     space.d_den[k] = SpacePolynomial(d_den);
     space.num[k] = SpacePolynomial(num);
@@ -270,15 +252,15 @@ Curve projected_curve(const SpaceData& space) {
   for (const auto* d : dens)
     if (std::none_of(distinct.begin(), distinct.end(), [&](const auto* e) { return *e == *d; })) distinct.push_back(d);
   std::vector<double> D = *distinct[0];
-  for (std::size_t j = 1; j < distinct.size(); ++j) D = product(D, *distinct[j]);
+  for (std::size_t j = 1; j < distinct.size(); ++j) D = product_summed(D, *distinct[j]);
   std::vector<double> U(D.size(), 0.0), V(D.size(), 0.0);
   for (int k = 0; k < 3; ++k) {
     std::vector<double> homogeneous(n + 1);
     for (int i = 0; i <= n; ++i) homogeneous[i] = (*nums[k])[i] - space.centre[k] * (*dens[k])[i];
     for (const auto* d : distinct)  // times the other distinct denominators
-      if (*d != *dens[k]) homogeneous = product(homogeneous, *d);
-    U = sum(U, scaled(homogeneous, space.a[k]));
-    V = sum(V, scaled(homogeneous, space.b[k]));
+      if (*d != *dens[k]) homogeneous = product_summed(homogeneous, *d);
+    U = combine(U, scaled(homogeneous, space.a[k]), 1.0);
+    V = combine(V, scaled(homogeneous, space.b[k]), 1.0);
   }
   flat.kind = CurveKind::rational;
   flat.x_num = U;

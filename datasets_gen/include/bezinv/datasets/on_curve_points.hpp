@@ -13,6 +13,9 @@
 
 namespace bezinv::datasets {
 
+// Attempts per requested point before a point set (on or off the curve) gives up on a curve.
+inline constexpr int kAttemptsPerPoint = 20;
+
 // P(t) rounded to the nearest double point.
 Point on_curve(const Curve& curve, double t);
 
