@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # README command 2: set up, build, and run every test (the Python module's suite included) in one
-# tree under AddressSanitizer + UndefinedBehaviorSanitizer (GCC). The fuzz targets: scripts/fuzz.sh.
+# tree under AddressSanitizer + UndefinedBehaviorSanitizer (GCC), the fuzz targets for a few
+# seconds each with a blind mutation driver (coverage-guided, with clang: scripts/fuzz.sh).
 #
 #   bash scripts/test.sh             # the sanitizer tree (build-sanitize)
 #   bash scripts/test.sh --release   # then the Release tree too (build), where the property tests

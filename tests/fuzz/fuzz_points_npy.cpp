@@ -56,10 +56,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   (void)written;
   bezinv::fuzz::write_bytes(path, data, size);
 
-  read_all_points(path, curves, {.curve = "a"});
-  read_all_points(path, curves, {.curve = "s"});
-  read_all_points(path, curves, {.curve = "r", .begin = 1, .end = 3});
-  read_all_points(three_points, curves, {.index_path = path});
+  bezinv::CurveSelection plane, space, rows, indexed;
+  plane.curve = "a";
+  space.curve = "s";
+  rows.curve = "r";
+  rows.begin = 1;
+  rows.end = 3;
+  indexed.index_path = path;
+  read_all_points(path, curves, plane);
+  read_all_points(path, curves, space);
+  read_all_points(path, curves, rows);
+  read_all_points(three_points, curves, indexed);
   try {
     (void)bezinv::npy_rows(path);
   } catch (const bezinv::InputError&) {
