@@ -5,9 +5,10 @@
 // every build, on inputs the seeds alone never reach. Deterministic: the same seed (--seed) and the
 // same corpus give the same inputs, and the input that fails is written out to be replayed.
 //
-//   TARGET [--seconds S] [--seed N] [--dict FILE] [--artifact-prefix P] CORPUS_DIR_OR_FILE...
+//   TARGET [--seconds S] [--runs N] [--seed N] [--dict FILE] [--artifact-prefix P] CORPUS_DIR_OR_FILE...
 //
-// With --seconds 0 it replays the files given (a failing input: TARGET --seconds 0 FILE).
+// It stops after S seconds (default 5) or N inputs in all, whichever comes first. With --seconds 0
+// it replays the files given (a failing input: TARGET --seconds 0 FILE).
 #include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
@@ -184,7 +185,8 @@ class Mutator {
 
 int usage() {
   std::fprintf(stderr,
-               "usage: TARGET [--seconds S] [--seed N] [--dict FILE] [--artifact-prefix P] CORPUS_DIR_OR_FILE...\n");
+               "usage: TARGET [--seconds S] [--runs N] [--seed N] [--dict FILE] [--artifact-prefix P] "
+               "CORPUS_DIR_OR_FILE...\n");
   return 2;
 }
 
@@ -193,12 +195,14 @@ int usage() {
 int main(int argc, char** argv) {
   double seconds = 5;
   std::uint64_t seed = 1;
+  std::uint64_t max_runs = UINT64_MAX;
   std::string dictionary_path, artifact_prefix = "./";
   std::vector<std::filesystem::path> inputs;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
     if (arg == "--seconds" && has_value) seconds = std::strtod(argv[++i], nullptr);
+    else if (arg == "--runs" && has_value) max_runs = std::strtoull(argv[++i], nullptr, 10);
     else if (arg == "--seed" && has_value) seed = std::strtoull(argv[++i], nullptr, 10);
     else if (arg == "--dict" && has_value) dictionary_path = argv[++i];
     else if (arg == "--artifact-prefix" && has_value) artifact_prefix = argv[++i];
@@ -241,15 +245,17 @@ int main(int argc, char** argv) {
     ++runs;
   }
   Mutator mutator(seed, seeds, dictionary);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (std::chrono::steady_clock::now() < deadline) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto deadline = start + std::chrono::duration<double>(seconds);
+  while (runs < max_runs && std::chrono::steady_clock::now() < deadline) {
     const Bytes input = mutator.next();
     g_current = &input;
     LLVMFuzzerTestOneInput(input.data(), input.size());
     ++runs;
   }
   g_current = nullptr;
-  std::printf("mutation_driver: %zu seeds and %llu inputs in all, seed %llu, no failure\n", seeds.size(),
-              static_cast<unsigned long long>(runs), static_cast<unsigned long long>(seed));
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("mutation_driver: %zu seeds and %llu inputs in all in %.0f s, seed %llu, no failure\n", seeds.size(),
+              static_cast<unsigned long long>(runs), elapsed, static_cast<unsigned long long>(seed));
   return 0;
 }
