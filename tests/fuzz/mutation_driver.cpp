@@ -247,7 +247,14 @@ int main(int argc, char** argv) {
   Mutator mutator(seed, seeds, dictionary);
   const auto start = std::chrono::steady_clock::now();
   const auto deadline = start + std::chrono::duration<double>(seconds);
-  while (runs < max_runs && std::chrono::steady_clock::now() < deadline) {
+  auto next_report = start + std::chrono::minutes(1);
+  for (auto now = start; runs < max_runs && now < deadline; now = std::chrono::steady_clock::now()) {
+    if (now >= next_report) {  // a long run says how far it is, once a minute
+      std::printf("mutation_driver: %llu inputs in %.0f s\n", static_cast<unsigned long long>(runs),
+                  std::chrono::duration<double>(now - start).count());
+      std::fflush(stdout);
+      next_report += std::chrono::minutes(1);
+    }
     const Bytes input = mutator.next();
     g_current = &input;
     LLVMFuzzerTestOneInput(input.data(), input.size());
