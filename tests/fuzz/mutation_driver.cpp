@@ -43,7 +43,7 @@ std::string g_artifact_message;  // made before any input runs: the handlers onl
 
 // Async-signal-safe: open, write, close only.
 void write_current_input() {
-  if (g_current == nullptr || g_artifact_path.empty()) return;
+  if (g_current == nullptr) return;
   const int fd = ::open(g_artifact_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd < 0) return;
   std::size_t done = 0;
