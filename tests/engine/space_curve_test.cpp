@@ -316,6 +316,44 @@ TEST(SpaceCurves, AFinitePointBeyondTheLargestDoubleFromTheCurveIsOffTheCurve) {
   }
 }
 
+// A unit segment at x = -DBL_MAX: its tolerance is the resolution of its coordinates, 4 ulps of
+// DBL_MAX, and its extent in the plan's normalized units a few ulps, so the plane (in the
+// projection's units) and space (in its own) can disagree by rounding on a point an ulp or two off
+// the line. Whatever either says, the space answer keeps the contract: an off_curve row's residual
+// beyond the tolerance, every other row's within it; with every option (found by fuzz_invert:
+// without refinement, a row the plane put off the curve stayed off_curve within the tolerance).
+TEST(SpaceCurves, AStatusAgreesWithTheResidualOnACurveAFewUlpsWide) {
+  const double big = std::numeric_limits<double>::max(), ulp = big - std::nextafter(big, 0.0);
+  const double tolerance = kResolutionUlps * ulp;
+  const InversionPlan plan = make_plan(Curve::space_bezier("edge", {{-big, 0.0, 0.0}, {-big, 1.0, 0.0}}));
+  const std::vector<Point3> points = {{-big + ulp, 0.34, 0.0}, {-big + ulp, 0.5, 0.0}, {-big, 0.25, 0.0},
+                                      {-big + 2 * ulp, 0.75, 0.0}, {-big + ulp, 1.5, 0.0}, {-big + 8 * ulp, 0.5, 0.0}};
+  int off_curve = 0;
+  for (int flags = 0; flags < 16; ++flags) {
+    InvertOptions options;
+    options.threads = 1;
+    options.refine = !(flags & 1);
+    options.fast_path = !(flags & 2);
+    options.relative_tolerance = (flags & 4) ? 1e-2 : kDefaultRelativeTolerance;
+    if (flags & 8) options.off_curve = OffCurve::projection;
+    std::vector<PointResult> results(points.size());
+    invert(plan, points, results, options);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const PointResult& r = results[k];
+      if (r.status == Status::off_curve) {
+        ++off_curve;
+        EXPECT_GT(r.residual, tolerance * (1 - 1e-12)) << "flags " << flags << ", point " << k;
+      } else {
+        EXPECT_LE(r.residual, tolerance * (1 + 1e-12)) << "flags " << flags << ", point " << k << ": status "
+                                                        << static_cast<int>(r.status);
+      }
+      EXPECT_EQ(r.status == Status::ok, r.t >= 0.0 && r.t <= 1.0 && r.residual <= tolerance * (1 + 1e-12))
+          << "flags " << flags << ", point " << k;
+    }
+  }
+  EXPECT_GE(off_curve, 16);  // the point 8 ulps off the line, at least
+}
+
 TEST(SpaceCurves, LinesElevatedAndFarCurves) {
   const Curve line = Curve::space_bezier("line", {{0, 0, 0}, {1, 2, 3}});
   const PointResult on_line = invert_point(make_plan(line), Point3(0.25, 0.5, 0.75));

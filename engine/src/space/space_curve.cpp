@@ -473,7 +473,13 @@ void space_answer(const SpaceData& space, const std::array<double, 3>& point, do
       r.t2 = PointResult::nan;
       return;
     }
-    if (!(d <= tolerance)) r.status = Status::off_curve;
+    if (!(d <= tolerance)) {
+      r.status = Status::off_curve;
+    } else if (r.status == Status::off_curve) {
+      // Within the tolerance in space though off the curve in the plane: the two measure the
+      // distance in different units, and they disagree by rounding on a curve a few ulps wide.
+      r.status = r.t >= 0.0 && r.t <= 1.0 ? Status::ok : Status::outside_segment;
+    }
     return;
   }
   if (r.status == Status::ok || r.status == Status::outside_segment) {
