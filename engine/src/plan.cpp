@@ -182,20 +182,15 @@ PlanData make_plan_data(const Curve& given) {
   const double half_diagonal = std::hypot(0.5 * hi[0] - 0.5 * lo[0], 0.5 * hi[1] - 0.5 * lo[1]);
   plan.diagonal = 2 * half_diagonal;
   plan.centre = {0.5 * lo[0] + 0.5 * hi[0], 0.5 * lo[1] + 0.5 * hi[1]};
+  const double magnitude = std::max({std::abs(lo[0]), std::abs(hi[0]), std::abs(lo[1]), std::abs(hi[1])});
   if (half_diagonal > 0) {
-    // diagonal = m 2^e with m in [0.5, 1); e clamped so that 2^-e is a double too (it is for
-    // diagonals from 1e-301 to the largest double, where the clamp does nothing; past it, the
-    // scale 2^1023 leaves the normalized curve a few units wide).
-    int e = 0;
-    std::frexp(half_diagonal, &e);
-    e = std::clamp(e + 1, -1000, 1023);
+    const int e = detail::normalizing_exponent(half_diagonal, magnitude);
     plan.scale = std::ldexp(1.0, e);
     plan.inverse_scale = std::ldexp(1.0, -e);
   }
   plan.normalized_diagonal = 2 * (half_diagonal * plan.inverse_scale);
   // The coordinates' own resolution: a point made on the curve and rounded to doubles is within
   // an ulp of it, wherever the curve sits (a 1-unit curve at 1e12 has ulps of 1.2e-4).
-  const double magnitude = std::max({std::abs(lo[0]), std::abs(hi[0]), std::abs(lo[1]), std::abs(hi[1])});
   plan.normalized_resolution = kResolutionUlps * ulp(magnitude) * plan.inverse_scale;
 
   // Rotation (one denominator only): turn the principal axis of the control points to 45 degrees,

@@ -7,6 +7,7 @@
 //     B(x0, y0) = Bez(X_num, Y_num) - x0 Bez(X_den, Y_num) - y0 Bez(X_num, Y_den) + x0 y0 Bez(X_den, Y_den)
 //               =        B0         - x0        Bx          - y0        By          + x0 y0     Bxy,
 // with Bxy = Bez(W, W) = 0 when the denominators are one W (rational Bezier), so B is affine there.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -26,6 +27,22 @@ namespace bezinv::detail {
 inline double ulp(double magnitude) {
   const double above = std::nextafter(magnitude, std::numeric_limits<double>::infinity());
   return std::isfinite(above) ? above - magnitude : magnitude - std::nextafter(magnitude, 0.0);
+}
+
+// The exponent e of the scale 2^e that normalizes a curve whose control box has half-diagonal
+// `half_diagonal` (> 0) and largest coordinate `magnitude`: about the half-diagonal, so the
+// normalized curve is a few units wide; clamped so that 2^-e is a double too (the clamp does
+// nothing for diagonals from 1e-301 to the largest double; past it, 2^1023 leaves the normalized
+// curve a few units wide); and never so small that the coordinates' resolution, kResolutionUlps
+// ulps of `magnitude`, overflows in normalized units, which made the tolerance inf (a curve 1e-300
+// wide at 1e308, far narrower than its coordinates resolve, is normalized as if 2^-960 of an ulp
+// of them wide: a point to the engine, within the tolerance of every point near it).
+inline int normalizing_exponent(double half_diagonal, double magnitude) {
+  int e = 0;
+  std::frexp(half_diagonal, &e);
+  e = std::clamp(e + 1, -1000, 1023);
+  if (magnitude > 0 && std::isfinite(magnitude)) e = std::min(std::max(e, std::ilogb(ulp(magnitude)) - 960), 1023);
+  return e;
 }
 
 // What only the answers off the curve need: the certified nearest point of the segment and the

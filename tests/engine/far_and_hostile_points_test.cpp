@@ -245,6 +245,32 @@ TEST(OrdinaryFarAndHostile, AControlPointAtTheLargestDoubleKeepsAFiniteTolerance
   EXPECT_EQ(invert_point(space, Point3(big / 4, 0, big * 1e-5)).status, Status::off_curve);
 }
 
+// A curve far narrower than its coordinates resolve: 1e-300 wide (in y, or in z) at x = -DBL_MAX,
+// where the doubles are 2e292 apart. Normalizing it by its own width made the coordinates'
+// resolution overflow, so the tolerance was inf and every finite point on the curve (found by
+// tests/fuzz/fuzz_invert). The curve is a point to within the resolution, 4 ulps of DBL_MAX: a
+// point there is ok, one 8 ulps off is off_curve at that distance.
+TEST(OrdinaryFarAndHostile, ACurveNarrowerThanItsCoordinatesResolveKeepsAFiniteTolerance) {
+  const double big = std::numeric_limits<double>::max(), ulp = big - std::nextafter(big, 0.0);
+  const InversionPlan plane = make_plan(Curve::bezier("sliver", {{-big, 0}, {-big, 1e-300}}));
+  const InversionPlan space = make_plan(Curve::space_bezier("sliver", {{-big, 0, 0}, {-big, 0, 1e-300}}));
+  for (const bool refine : {true, false}) {
+    const InvertOptions options{.refine = refine};
+    const PointResult on = invert_point(plane, {-big, 5e-301}, options);
+    EXPECT_EQ(on.status, Status::ok) << on.reason;
+    EXPECT_LE(on.residual, 4 * ulp);
+    const PointResult off = invert_point(plane, {-big + 8 * ulp, 0}, options);
+    EXPECT_EQ(off.status, Status::off_curve) << off.reason;
+    EXPECT_EQ(off.residual, 8 * ulp);
+    const PointResult on3 = invert_point(space, Point3(-big, 0, 5e-301), options);
+    EXPECT_EQ(on3.status, Status::ok) << on3.reason;
+    EXPECT_LE(on3.residual, 4 * ulp);
+    const PointResult off3 = invert_point(space, Point3(-big + 8 * ulp, 0, 0), options);
+    EXPECT_EQ(off3.status, Status::off_curve) << off3.reason;
+    EXPECT_EQ(off3.residual, 8 * ulp);
+  }
+}
+
 TEST(OrdinaryFarAndHostile, HugeAndTinyCurves) {
   Findings findings("control points near 1e154 and 1e-154");
   int skipped = 0;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -99,30 +100,44 @@ double tolerance_of(const bezinv::InversionPlan& plan, double relative_tolerance
   return std::max(relative_tolerance * data.diagonal, data.normalized_resolution * data.scale);
 }
 
+// A broken contract: the row and the rule on stderr, for whoever replays the input, then the trap
+// the fuzzer (or the mutation driver) catches.
+[[noreturn]] void broken(const char* rule, const PointResult& r, double tolerance) {
+  std::fprintf(stderr, "fuzz_invert: %s: status %d, path %d, t %.17g, t2 %.17g, residual %.17g, tolerance %.17g, reason \"%s\"\n",
+               rule, static_cast<int>(r.status), static_cast<int>(r.path), r.t, r.t2, r.residual, tolerance,
+               r.reason ? r.reason : "(null)");
+  __builtin_trap();
+}
+
 // `tolerance` is NaN where the plan has no finite diagonal (a curve wider than the doubles): only
 // what needs no tolerance is checked.
 void check(const PointResult& r, bool finite_point, double tolerance) {
   // A bound computed in other units than the engine's comparison, by a product or two: a few ulps.
   const double bound = tolerance * (1 + 1e-12);
   auto beyond = [&](double residual) { return !std::isnan(tolerance) && !(residual <= bound); };
-  if (r.status > Status::failed || r.path > bezinv::Path::projection || r.reason == nullptr) __builtin_trap();
-  if (finite_point == (r.status == Status::invalid_input)) __builtin_trap();
+  if (r.status > Status::failed || r.path > bezinv::Path::projection || r.reason == nullptr)
+    broken("status, path or reason out of range", r, tolerance);
+  if (finite_point == (r.status == Status::invalid_input))
+    broken("invalid_input for a finite point, or not for a non-finite one", r, tolerance);
   switch (r.status) {
     case Status::ok:
-      if (!std::isfinite(r.t) || r.t < 0 || r.t > 1 || beyond(r.residual)) __builtin_trap();
+      if (!std::isfinite(r.t) || r.t < 0 || r.t > 1 || beyond(r.residual))
+        broken("ok: t not in [0, 1] or residual beyond the tolerance", r, tolerance);
       break;
     case Status::outside_segment:
-      if (!std::isfinite(r.t) || beyond(r.residual)) __builtin_trap();
+      if (!std::isfinite(r.t) || beyond(r.residual))
+        broken("outside_segment: t not finite or residual beyond the tolerance", r, tolerance);
       break;
     case Status::double_point:
-      if (!std::isfinite(r.t) || !std::isfinite(r.t2) || !(r.t < r.t2) || beyond(r.residual)) __builtin_trap();
+      if (!std::isfinite(r.t) || !std::isfinite(r.t2) || !(r.t < r.t2) || beyond(r.residual))
+        broken("double_point: t, t2 not finite and ordered, or residual beyond the tolerance", r, tolerance);
       break;
     case Status::off_curve:
-      if (r.residual <= tolerance * (1 - 1e-12)) __builtin_trap();
+      if (r.residual <= tolerance * (1 - 1e-12)) broken("off_curve: residual within the tolerance", r, tolerance);
       break;
     case Status::invalid_input:
     case Status::failed:
-      if (r.reason[0] == '\0') __builtin_trap();
+      if (r.reason[0] == '\0') broken("invalid_input or failed without a reason", r, tolerance);
       break;
   }
 }

@@ -129,28 +129,37 @@ SpaceData make_space_data(const Curve& curve) {
   const double half_diagonal = std::hypot(0.5 * hi[0] - 0.5 * lo[0], 0.5 * hi[1] - 0.5 * lo[1], 0.5 * hi[2] - 0.5 * lo[2]);
   space.diagonal = 2 * half_diagonal;
   for (int k = 0; k < 3; ++k) space.centre[k] = 0.5 * lo[k] + 0.5 * hi[k];
+  const double magnitude = std::max({std::abs(lo[0]), std::abs(hi[0]), std::abs(lo[1]), std::abs(hi[1]),
+                                     std::abs(lo[2]), std::abs(hi[2])});
   if (half_diagonal > 0 && std::isfinite(half_diagonal)) {
-    int e = 0;
-    std::frexp(half_diagonal, &e);
-    e = std::clamp(e + 1, -1000, 1023);
+    const int e = normalizing_exponent(half_diagonal, magnitude);
     space.scale = std::ldexp(1.0, e);
     space.inverse_scale = std::ldexp(1.0, -e);
   }
-  const double magnitude = std::max({std::abs(lo[0]), std::abs(hi[0]), std::abs(lo[1]), std::abs(hi[1]),
-                                     std::abs(lo[2]), std::abs(hi[2])});
   space.normalized_resolution = kResolutionUlps * ulp(magnitude) * space.inverse_scale;
 
   // The principal axes of the control points (normalized units, about the box's centre).
-  std::array<std::array<double, 3>, 3> covariance{}, axes{};
+  std::vector<std::array<double, 3>> offsets;
+  double farthest = 0;
   for (int i = 0; i <= n; ++i) {
     std::array<double, 3> d;
     for (int k = 0; k < 3; ++k)
       d[k] = (*nums[k])[i] / (*dens[k])[i] * space.inverse_scale - space.centre[k] * space.inverse_scale;
     // A ratio at infinity (a zero denominator coefficient) has no place among the points.
     if (!std::isfinite(d[0]) || !std::isfinite(d[1]) || !std::isfinite(d[2])) continue;
+    offsets.push_back(d);
+    for (double e : d) farthest = std::max(farthest, std::abs(e));
+  }
+  // A curve far narrower than its coordinates resolve is normalized to a tiny width
+  // (normalizing_exponent), whose squares would underflow: its offsets are scaled by a power of
+  // two (exact; the axes do not change) to about 1 first. A curve a few units wide is left as it is.
+  if (farthest > 0 && farthest < 0x1p-100)
+    for (auto& d : offsets)
+      for (double& e : d) e = std::ldexp(e, -std::ilogb(farthest));
+  std::array<std::array<double, 3>, 3> covariance{}, axes{};
+  for (const auto& d : offsets)
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) covariance[r][c] += d[r] * d[c];
-  }
   symmetric_eigenvectors(covariance, axes);
   for (int c = 0; c < 2; ++c) {
     // A fixed sign (the largest component positive), so that the same curve gets the same plane.
