@@ -191,5 +191,34 @@ TEST(Projection, ACubicsPointIsProjectedFromItsDoublePoint) {
   EXPECT_GT(projected, off_curve * 3 / 4);
 }
 
+// Without refinement the status is decided at the algebraic t, and the projection can land
+// nearer than it, within the tolerance: the row then keeps its algebraic answer, so that an
+// off_curve row's residual stays beyond the tolerance (found by fuzz_invert on this quartic, whose
+// two middle control points coincide, with its points as the fuzzer made them).
+TEST(Projection, AProjectionWithinTheToleranceLeavesTheRowAsItWas) {
+  const Curve quartic = Curve::bezier("q", {{-3200, 0}, {0, 0}, {256, 256}, {256, 256}, {256, 512}});
+  const InversionPlan plan = make_plan(quartic);
+  const double tolerance = 1e-2 * plan.diagonal();
+  const std::vector<Point> points = {{-3539.308022207153, 1.0406508739113338}, {128, 256},
+                                     {128.64287472483437, 243.50559694981382}};
+  for (const bool fast_path : {true, false}) {
+    InvertOptions options{.off_curve = OffCurve::projection};
+    options.threads = 1;
+    options.refine = false;
+    options.fast_path = fast_path;
+    options.algebraic = Algebraic::formula;
+    options.relative_tolerance = 1e-2;
+    std::vector<PointResult> results(points.size());
+    invert(plan, points, results, options);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const PointResult& r = results[k];
+      if (r.status == Status::off_curve)
+        EXPECT_GT(r.residual, tolerance) << "point " << k << ", path " << static_cast<int>(r.path) << ", t " << r.t;
+      else
+        EXPECT_LE(r.residual, tolerance) << "point " << k;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace bezinv

@@ -221,7 +221,7 @@ void decide(const PlanData& plan, double u0, double v0, const Candidate& main, c
   // Off the curve by projection where asked for and the formula is valid at the point.
   auto report_off_curve = [&](const Candidate& c) {
     report(c, Status::off_curve);
-    if (projects_off_curve(plan, options)) project_off_curve(plan, u0, v0, r);
+    if (projects_off_curve(plan, options)) project_off_curve(plan, u0, v0, tolerance, r);
   };
   if (!options.refine && count > 0 && std::isfinite(candidates[0].t))
     return report_off_curve(candidates[0]);  // --no-refine keeps the algebraic t

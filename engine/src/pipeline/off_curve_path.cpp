@@ -98,7 +98,7 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
     r.status = Status::off_curve;
     r.path = Path::nearest;
     r.sigma_min = r.sigma_next = PointResult::nan;
-    if (projection) project_off_curve(plan, u[k], v[k], r);
+    if (projection) project_off_curve(plan, u[k], v[k], radius, r);
   }
   clock.lap(&StageSeconds::off_curve);
 }

@@ -16,11 +16,11 @@ bool projects_off_curve(const PlanData& plan, const InvertOptions& options) {
   return options.off_curve == OffCurve::projection && formula_path_data(plan).usable;
 }
 
-void project_off_curve(const PlanData& plan, double u0, double v0, PointResult& r) {
+void project_off_curve(const PlanData& plan, double u0, double v0, double beyond, PointResult& r) {
   const double t = formula_parameter(formula_path_data(plan), u0, v0);
   if (!std::isfinite(t)) return;
   const double d = distance(plan, u0, v0, t);
-  if (!std::isfinite(d)) return;
+  if (!(d > beyond) || !std::isfinite(d)) return;
   r.t = t;
   r.t2 = PointResult::nan;
   r.residual = d * plan.scale;
@@ -50,7 +50,8 @@ void projection_path(const PlanData& plan, const InvertOptions& options, std::si
     } else {
       projected_distance = distance(plan, w.u[l], w.v[l], projected);
     }
-    if (!std::isfinite(projected_distance)) continue;
+    // Within the radius (rounding, as the whole segment was proved farther): not by projection.
+    if (!(projected_distance > radius) || !std::isfinite(projected_distance)) continue;
     w.active[l] = 0;
     PointResult& r = results[l];
     r.status = Status::off_curve;

@@ -25,8 +25,11 @@ bool projects_off_curve(const PlanData& plan, const InvertOptions& options);
 
 // An off_curve answer r for the plan-normalized point (u0, v0) becomes the projection where the
 // formula is valid at the point: t = N/M, residual |P(t) - P0|, path projection, no sigma columns.
-// Elsewhere (near the formula's base points, a far point) r stays the nearest point.
-void project_off_curve(const PlanData& plan, double u0, double v0, PointResult& r);
+// Elsewhere (near the formula's base points, a far point) r stays as it is. So it does where the
+// projected point is within `beyond`, the distance that decided off_curve (the tolerance): without
+// refinement the status is decided at the algebraic t, and the projection can land nearer, within
+// the tolerance; an off_curve row's residual must stay beyond it.
+void project_off_curve(const PlanData& plan, double u0, double v0, double beyond, PointResult& r);
 
 // The off-curve path's quick proof for projection (see above), before the nearest-point search:
 // every active lane whose refinement ended on the segment farther than the tolerance, and whose
