@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 #include "bezinv/kernels/batch.hpp"
 #include "degree_drop.hpp"
@@ -48,6 +49,40 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
   clock.lap(&StageSeconds::refine);
 }
 
+// Lane-batched refinement of every lane from t_algebraic (t_refined, distance), grouped. The Newton
+// kernel runs a SIMD group until its slowest lane settles, and a point off the curve takes several
+// steps where a point on it takes one: in a batch of both kinds (measured points, half of them
+// noisy) nearly every group mixed them and ran the on-curve lanes as long as the others. So the
+// kernel gets the lanes whose seed put them on the curve (B's sigma_min estimate, ||B z|| / ||B||,
+// at rounding level) first and the rest after, and few groups mix. Each lane computes the same
+// numbers whatever its group (rational_newton), so the answers are the ungrouped ones bit for bit.
+// A batch of one kind (the estimate NaN where the formula gave t: no B) is refined in place.
+void refine_grouped(const kernels::Implementation& kernel, const kernels::RationalCurve& curve, std::size_t count,
+                    BatchWorkspace& w) {
+  constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
+  std::array<std::uint8_t, kBatchLanes> lane_of;
+  std::size_t near = 0;
+  for (std::size_t l = 0; l < count; ++l)
+    if (w.estimate[l] <= kOnCurveEstimate) lane_of[near++] = static_cast<std::uint8_t>(l);
+  if (near == 0 || near == count) {
+    kernel.rational_newton(curve, kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(), w.distance.data());
+    return;
+  }
+  std::size_t far = near;
+  for (std::size_t l = 0; l < count; ++l)
+    if (!(w.estimate[l] <= kOnCurveEstimate)) lane_of[far++] = static_cast<std::uint8_t>(l);
+  std::array<double, kBatchLanes> u, v, t, distance;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t l = lane_of[k];
+    u[k] = w.u[l], v[k] = w.v[l], t[k] = w.t_refined[l];
+  }
+  kernel.rational_newton(curve, kNewtonSettings, count, u.data(), v.data(), t.data(), distance.data());
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t l = lane_of[k];
+    w.t_refined[l] = t[k], w.distance[l] = distance[k];
+  }
+}
+
 }  // namespace
 
 void fast_path(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
@@ -91,8 +126,7 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
   // also looks along the extension).
   std::copy_n(w.t_algebraic.begin(), count, w.t_refined.begin());
   const kernels::RationalCurve curve = detail::kernel_curve(plan);
-  kernel.rational_newton(curve, detail::kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(),
-                         w.distance.data());
+  refine_grouped(kernel, curve, count, w);
   detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
   if (two_passes) {
     // The common case of pass 1, for the whole batch first: a lane refined onto the segment within
