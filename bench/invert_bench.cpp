@@ -2,12 +2,14 @@
 // the fast path), refined by the SVD alone (`fast_path = false`), algebraic (refine = false: the
 // paper's t, always by the SVD), one thread and all cores. 64 curves x 1024 points per degree,
 // cycled so that no curve's plan or points stay cache-hot between iterations (one iteration = one
-// curve's 1024 points). Also noisy points (BM_Engine_refined_noisy). The baselines (the paper's way, Eigen per point, OpenCASCADE, SISL) run in
+// curve's 1024 points). Also noisy points (BM_Engine_refined_noisy) and mixed batches (BM_Engine_refined_mixed). The baselines (the paper's way, Eigen per point, OpenCASCADE, SISL) run in
 // bench/baselines_bench.cpp, beside bezinv in the same process.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstddef>
 #include <map>
+#include <tuple>
 #include <numbers>
 #include <utility>
 #include <random>
@@ -32,12 +34,17 @@ struct Workload {
   std::vector<std::vector<Point>> points;  // kPointsPerCurve per curve, t uniform in [0,1]
 };
 
+// Which of a noisy workload's points are moved off the curve: all, every other one (a mixed batch:
+// measured points, some within the tolerance and some not), or none (its points on the curve). The
+// three share their curves and parameters, so a mixed batch's rate compares with the other two's.
+enum class Moved { all, every_other, none };
+
 // Random rational Bezier curves (the paper's Sect. 3 setting) on perturbed arcs, built once per
-// degree and noise: the points are P(t) moved by noise * uniform(0, 1) * the curve's diagonal in a
-// random direction, as `bezinv profile --noise` does (noise 0: on the curve).
-const Workload& workload(int degree, double noise = 0.0) {
-  static std::map<std::pair<int, double>, Workload> cache;
-  auto [it, inserted] = cache.try_emplace({degree, noise});
+// degree, noise and Moved: the points are P(t) moved by noise * uniform(0, 1) * the curve's
+// diagonal in a random direction, as `bezinv profile --noise` does (noise 0: on the curve).
+const Workload& workload(int degree, double noise = 0.0, Moved moved = Moved::all) {
+  static std::map<std::tuple<int, double, Moved>, Workload> cache;
+  auto [it, inserted] = cache.try_emplace({degree, noise, moved});
   Workload& w = it->second;
   if (inserted) {
     std::mt19937_64 rng(4242 + degree);
@@ -46,11 +53,13 @@ const Workload& workload(int degree, double noise = 0.0) {
                                                 datasets::ControlPolygon::perturbed_arc));
       w.plans.push_back(make_plan(w.curves.back()));
       std::vector<Point> pts(kPointsPerCurve);
-      for (Point& p : pts) {
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        Point& p = pts[i];
         p = datasets::on_curve(w.curves.back(), datasets::uniform(rng, 0.0, 1.0));
         if (noise == 0.0) continue;
         const double angle = datasets::uniform(rng, 0.0, 2 * std::numbers::pi);
         const double offset = noise * datasets::uniform(rng, 0.0, 1.0) * w.plans.back().diagonal();
+        if (moved == Moved::none || (moved == Moved::every_other && i % 2 == 0)) continue;
         p = {p.x + offset * std::cos(angle), p.y + offset * std::sin(angle)};
       }
       w.points.push_back(std::move(pts));
@@ -61,8 +70,9 @@ const Workload& workload(int degree, double noise = 0.0) {
 
 // ---- the engine ------------------------------------------------------------------------------------
 
-void run_engine(benchmark::State& state, bool refine, int threads, bool fast_path = true, double noise = 0.0) {
-  const Workload& w = workload(static_cast<int>(state.range(0)), noise);
+void run_engine(benchmark::State& state, bool refine, int threads, bool fast_path = true, double noise = 0.0,
+                Moved moved = Moved::all) {
+  const Workload& w = workload(static_cast<int>(state.range(0)), noise, moved);
   std::vector<PointResult> results(kPointsPerCurve);
   const InvertOptions options{.refine = refine, .threads = threads, .fast_path = fast_path};
   int c = 0;
@@ -86,6 +96,14 @@ void BM_Engine_refined_noisy(benchmark::State& state) {
   run_engine(state, true, 1, true, std::pow(10.0, -static_cast<double>(state.range(1))));
 }
 
+// Mixed batches: the noisy workload with every other point moved (range(2) = 1), beside the same
+// points all moved (2) and none moved (0), so that "mixed / apart", the mixed rate over
+// 2 / (1 / none + 1 / all), is measured on one set of curves and parameters in one run.
+void BM_Engine_refined_mixed(benchmark::State& state) {
+  constexpr Moved kMoved[] = {Moved::none, Moved::every_other, Moved::all};
+  run_engine(state, true, 1, true, std::pow(10.0, -static_cast<double>(state.range(1))), kMoved[state.range(2)]);
+}
+
 #define BEZINV_DEGREES ->Arg(3)->Arg(5)->Arg(8)->Arg(15)->Arg(20)->Unit(benchmark::kMicrosecond)
 BENCHMARK(BM_Engine_refined) BEZINV_DEGREES;
 BENCHMARK(BM_Engine_algebraic) BEZINV_DEGREES;
@@ -94,6 +112,10 @@ BENCHMARK(BM_Engine_refined_all_cores) BEZINV_DEGREES->UseRealTime();
 BENCHMARK(BM_Engine_refined_noisy)
     ->ArgsProduct({{3, 8, 15, 20}, {7, 5, 4}})
     ->ArgNames({"n", "noise_exp"})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Engine_refined_mixed)
+    ->ArgsProduct({{3, 8, 15}, {4, 2}, {0, 1, 2}})
+    ->ArgNames({"n", "noise_exp", "moved"})
     ->Unit(benchmark::kMicrosecond);
 #undef BEZINV_DEGREES
 
