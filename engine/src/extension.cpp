@@ -5,8 +5,10 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <span>
 #include <utility>
+#include <vector>
 
 #include "bernstein_arithmetic.hpp"
 #include "bezinv/tolerances.hpp"
@@ -133,6 +135,36 @@ std::pair<Piece, Piece> halves(const Piece& piece) {
   return out;
 }
 
+// The pieces by their far radius, nearest the origin first (NaN, no radius known, before all):
+// a point then tests only the pieces up to the first whose radius it lies within, where it tested
+// the far radius of every piece (30-40 of them, nearly all cleared by it). The clearance is every
+// piece's, so the order changes no answer.
+void order_by_far_radius(OffCurveData& data) {
+  const int m = data.extension_degree;
+  const std::size_t pieces = data.extension_far2.size();
+  std::vector<std::size_t> order(pieces);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  auto key = [&](std::size_t i) {
+    const double far2 = data.extension_far2[i];
+    return std::isnan(far2) ? -std::numeric_limits<double>::infinity() : far2;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+  const std::size_t h_size = 4 * static_cast<std::size_t>(m + 1);
+  std::vector<double> h(data.extension_h.size()), scale(data.extension_scale.size()),
+      boxes(data.extension_boxes.size()), far2(pieces);
+  for (std::size_t k = 0; k < pieces; ++k) {
+    const std::size_t i = order[k];
+    std::copy_n(data.extension_h.begin() + i * h_size, h_size, h.begin() + k * h_size);
+    std::copy_n(data.extension_scale.begin() + 4 * i, 4, scale.begin() + 4 * k);
+    std::copy_n(data.extension_boxes.begin() + 4 * i, 4, boxes.begin() + 4 * k);
+    far2[k] = data.extension_far2[i];
+  }
+  data.extension_h = std::move(h);
+  data.extension_scale = std::move(scale);
+  data.extension_boxes = std::move(boxes);
+  data.extension_far2 = std::move(far2);
+}
+
 }  // namespace
 
 void extension_pieces(const PlanData& plan, OffCurveData& data) {
@@ -161,7 +193,7 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
     // near the curve: its far radius is below the curve's size, and its box does not hold it (a
     // weight of the other sign: a pole nearby) or is wider than kExtensionBoxRatio of the curve.
     // Points near the curve then pay the h test only on a few narrow pieces. Depth first, left
-    // half first: the pieces are stored in the order of s.
+    // half first (then ordered by far radius, below).
     const auto add = [&](auto&& self, const Piece& piece, int level) -> void {
       if (level < kBaseLevels) {
         const auto [left, right] = halves(piece);
@@ -192,6 +224,7 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
     };
     add(add, whole, 0);
   }
+  order_by_far_radius(data);
 }
 
 bool extension_clear(const PlanData& plan, double u0, double v0, double radius) {
@@ -210,7 +243,7 @@ bool extension_clear(const PlanData& plan, double u0, double v0, double radius) 
   // |P(t) - P0| >= |P(t)| - |P0| > radius wherever |P(t)| > |P0| + radius.
   const double beyond = std::sqrt(u0 * u0 + v0 * v0) + radius, beyond2 = beyond * beyond;
   for (int piece = 0; piece < pieces; ++piece) {
-    if (beyond2 < data.extension_far2[piece]) continue;
+    if (beyond2 < data.extension_far2[piece]) break;  // and every piece after it (order_by_far_radius)
     const double* box = data.extension_boxes.data() + piece * 4;
     if (box[0] == box[0] && box_distance2(box, u0, v0) > radius2) continue;  // not NaN: the box holds the piece
     const double* H = data.extension_h.data() + static_cast<std::size_t>(piece) * 4 * (m + 1);

@@ -62,8 +62,9 @@ struct OffCurveData {
   int stationary_degree = 0;
   std::vector<double> stationary_g, stationary_scale, stationary_boxes;
 
-  // The clearance of the extension (engine/src/extension.hpp): on each of its pieces (t >= 1,
-  // then t <= 0, each as s in [0, 1], in order) the Bernstein coefficients (degree
+  // The clearance of the extension (engine/src/extension.hpp): on each of its pieces (of t >= 1
+  // and t <= 0, each as s in [0, 1]; ordered by extension_far2, smallest first, NaN before all, so
+  // that a point stops at the first piece whose radius it lies within) the Bernstein coefficients (degree
   // extension_degree) of H0, Hx, Hy, Hw (piece-major), per piece and polynomial a bound of the
   // terms that round in them, and the box of the piece's control points (x min, x max, y min,
   // y max; NaN where its weights are not of one sign), and the square of a radius about the
