@@ -164,7 +164,11 @@ void horner_coefficients(PlanData& plan) {
   }
 }
 
-CurveJet curve_jet_horner(const PlanData& plan, double t) {
+namespace {
+
+// curve_jet_horner's work, the second derivatives only where kSecond.
+template <bool kSecond>
+CurveJet horner_jet(const PlanData& plan, double t) {
   // sum a_i (1-t)^(m-i) t^i = (1-t)^m sum a_i r^i with r = t / (1-t) for t <= 1/2, and
   // t^m sum a_i r^(m-i) with r = (1-t) / t above: Horner's rule in r <= 1, O(m) instead of de
   // Casteljau's O(m^2). The four polynomials go through each level together (four independent
@@ -181,7 +185,8 @@ CurveJet curve_jet_horner(const PlanData& plan, double t) {
   const double* a = plan.horner.data();
   const int offsets[3] = {0, n + 1, 2 * n + 1}, stride = 3 * n;
   const double scale[3] = {base_n, base_n1, base_n2};
-  for (int level = 0; level < 3 && level <= n; ++level) {
+  constexpr int kLevels = kSecond ? 3 : 2;
+  for (int level = 0; level < kLevels && level <= n; ++level) {
     const int m = n - level;
     std::array<double, 4> value;
     for (int p = 0; p < 4; ++p) value[p] = a[p * stride + offsets[level] + (low ? m : 0)];
@@ -192,16 +197,22 @@ CurveJet curve_jet_horner(const PlanData& plan, double t) {
   const auto quotient = [&](int num, int den, double& x, double& dx, double& ddx) {
     x = jet[0][num] / jet[0][den];
     dx = (jet[1][num] - jet[1][den] * x) / jet[0][den];
-    ddx = (jet[2][num] - 2 * jet[1][den] * dx - jet[2][den] * x) / jet[0][den];
+    if constexpr (kSecond) ddx = (jet[2][num] - 2 * jet[1][den] * dx - jet[2][den] * x) / jet[0][den];
   };
-  CurveJet j;
+  CurveJet j{};
   quotient(0, 1, j.x, j.dx, j.ddx);
   quotient(2, 3, j.y, j.dy, j.ddy);
   return j;
 }
 
+}  // namespace
+
+CurveJet curve_jet_horner(const PlanData& plan, double t) { return horner_jet<true>(plan, t); }
+
+CurveJet curve_slope_horner(const PlanData& plan, double t) { return horner_jet<false>(plan, t); }
+
 bool stationary_point(const PlanData& plan, double u0, double v0, double t, double distance) {
-  const CurveJet jet = curve_jet_horner(plan, t);
+  const CurveJet jet = curve_slope_horner(plan, t);
   const double along = (jet.x - u0) * jet.dx + (jet.y - v0) * jet.dy;
   return std::abs(along) <= kStationaryCosine * distance * length(jet.dx, jet.dy);
 }

@@ -22,6 +22,10 @@ CurveJet curve_jet(const PlanData& plan, double t);
 // The same by Horner's rule (plan.horner, O(n) instead of O(n^2); other rounding, so not for
 // refine_parameter, whose bits the kernels reproduce): for tests of a t, not for computing one.
 CurveJet curve_jet_horner(const PlanData& plan, double t);
+// P(t) and P'(t) alone by the same Horner's rule, the same doubles as curve_jet_horner's (ddx, ddy
+// left 0): a stationarity test needs no second derivatives, whose Horner level and two divisions
+// were a third of its cost.
+CurveJet curve_slope_horner(const PlanData& plan, double t);
 // Fills plan.horner from the normalized curve (make_plan).
 void horner_coefficients(PlanData& plan);
 

@@ -45,7 +45,7 @@ void projection_path(const PlanData& plan, const InvertOptions& options, std::si
     // residual reported, not a parameter computed from it.
     double projected_distance;
     if (projected >= 0.0 && projected <= 1.0) {
-      const CurveJet j = curve_jet_horner(plan, projected);
+      const CurveJet j = curve_slope_horner(plan, projected);
       projected_distance = std::hypot(j.x - w.u[l], j.y - w.v[l]);
     } else {
       projected_distance = distance(plan, w.u[l], w.v[l], projected);
