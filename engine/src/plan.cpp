@@ -198,10 +198,23 @@ PlanData make_plan_data(const Curve& given) {
   // vanish identically for every point on it, and B = 0). Separate denominators would be mixed by
   // a rotation (x' = c x - s y needs the product of both), so they keep the axes.
   if (plan.common_denominator) {
-    double sxx = 0, syy = 0, sxy = 0;
-    for (const auto& p : pts) {  // in units of the scale, so the squares cannot overflow
+    // In units of the scale, so that the squares of points in the box cannot overflow. A curve
+    // with a negative weight is sized by its segment (ratio_range), and its control points may lie
+    // far outside that box (1 unit away from a segment 1e-300 long: 1e300 scaled): their offsets
+    // are scaled by a power of two first (exact; the axis does not change), where their squares
+    // would overflow to inf and the axis, and every normalized coefficient with it, to NaN.
+    std::vector<std::array<double, 2>> offsets;
+    double farthest = 0;
+    for (const auto& p : pts) {
       const double dx = p[0] * plan.inverse_scale - plan.centre[0] * plan.inverse_scale;
       const double dy = p[1] * plan.inverse_scale - plan.centre[1] * plan.inverse_scale;
+      offsets.push_back({dx, dy});
+      farthest = std::max({farthest, std::abs(dx), std::abs(dy)});
+    }
+    if (farthest > 0x1p100 && std::isfinite(farthest))
+      for (auto& d : offsets) d = {std::ldexp(d[0], -std::ilogb(farthest)), std::ldexp(d[1], -std::ilogb(farthest))};
+    double sxx = 0, syy = 0, sxy = 0;
+    for (const auto& [dx, dy] : offsets) {
       sxx += dx * dx; syy += dy * dy; sxy += dx * dy;
     }
     const double principal = 0.5 * std::atan2(2 * sxy, sxx - syy);

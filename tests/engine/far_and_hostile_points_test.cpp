@@ -271,6 +271,27 @@ TEST(OrdinaryFarAndHostile, ACurveNarrowerThanItsCoordinatesResolveKeepsAFiniteT
   }
 }
 
+// A negative middle weight: the curve is sized by its segment (1e-300 long), its middle control
+// point (1, 1) lies 1e300 of those units away, and the squares of that offset overflowed in the
+// plan's rotation, which made every normalized coefficient NaN: every point, P(0) itself, was
+// off_curve with residual 0 (found by tests/fuzz/fuzz_invert). Points made at known t are ok.
+TEST(OrdinaryFarAndHostile, AControlPointFarOutsideATinySegmentKeepsThePlanFinite) {
+  const double big = std::numeric_limits<double>::max();
+  const Curve curve = Curve::rational_bezier("tiny", {{0, 0}, {1, 1}, {0, 1e-300}}, {big, -12.5, big});
+  const InversionPlan plan = make_plan(curve);
+  const double tolerance = 1e-6 * plan.diagonal();
+  ASSERT_GT(plan.diagonal(), 0.0);
+  for (const double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+    const auto p = curve.point(t);
+    const PointResult r = invert_point(plan, {p[0], p[1]});
+    EXPECT_EQ(r.status, Status::ok) << "t " << t << ": " << r.reason;
+    EXPECT_LE(r.residual, tolerance) << "t " << t;
+  }
+  const PointResult far = invert_point(plan, {1, 1});
+  EXPECT_EQ(far.status, Status::off_curve);
+  EXPECT_NEAR(far.residual, std::sqrt(2.0), 1e-12);
+}
+
 TEST(OrdinaryFarAndHostile, HugeAndTinyCurves) {
   Findings findings("control points near 1e154 and 1e-154");
   int skipped = 0;
