@@ -198,11 +198,10 @@ PlanData make_plan_data(const Curve& given) {
   // vanish identically for every point on it, and B = 0). Separate denominators would be mixed by
   // a rotation (x' = c x - s y needs the product of both), so they keep the axes.
   if (plan.common_denominator) {
-    // In units of the scale, so that the squares of points in the box cannot overflow. A curve
-    // with a negative weight is sized by its segment (ratio_range), and its control points may lie
-    // far outside that box (1 unit away from a segment 1e-300 long: 1e300 scaled): their offsets
-    // are scaled by a power of two first (exact; the axis does not change), where their squares
-    // would overflow to inf and the axis, and every normalized coefficient with it, to NaN.
+    // In units of the scale, rescaled where their squares would overflow (offset_rescaling: a
+    // curve with a negative weight is sized by its segment, and a control point 1 unit away from a
+    // segment 1e-300 long is 1e300 away scaled), which made the axis, and every normalized
+    // coefficient with it, NaN.
     std::vector<std::array<double, 2>> offsets;
     double farthest = 0;
     for (const auto& p : pts) {
@@ -211,8 +210,8 @@ PlanData make_plan_data(const Curve& given) {
       offsets.push_back({dx, dy});
       farthest = std::max({farthest, std::abs(dx), std::abs(dy)});
     }
-    if (farthest > 0x1p100 && std::isfinite(farthest))
-      for (auto& d : offsets) d = {std::ldexp(d[0], -std::ilogb(farthest)), std::ldexp(d[1], -std::ilogb(farthest))};
+    if (const int shift = detail::offset_rescaling(farthest); shift != 0)
+      for (auto& d : offsets) d = {std::ldexp(d[0], shift), std::ldexp(d[1], shift)};
     double sxx = 0, syy = 0, sxy = 0;
     for (const auto& [dx, dy] : offsets) {
       sxx += dx * dx; syy += dy * dy; sxy += dx * dy;

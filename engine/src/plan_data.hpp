@@ -45,6 +45,16 @@ inline int normalizing_exponent(double half_diagonal, double magnitude) {
   return e;
 }
 
+// The principal axes of a curve's control points come from the squares of their offsets from the
+// box's centre in normalized units, about 1. Offsets far from 1 (a control point of a negative
+// weight far outside its tiny segment; a curve narrower than its coordinates resolve) would make
+// those squares overflow or underflow: the power of two that brings the largest, `farthest`, to
+// about 1 (exact; the axes do not change), and 0, no scaling and the same bits, inside [2^-100, 2^100].
+inline int offset_rescaling(double farthest) {
+  if (!(farthest > 0) || !std::isfinite(farthest) || (farthest >= 0x1p-100 && farthest <= 0x1p100)) return 0;
+  return -std::ilogb(farthest);
+}
+
 // What only the answers off the curve need: the certified nearest point of the segment and the
 // clearance of the extension. Up to about four times the rest of a plan to make (sign tests on
 // pieces of polynomials of degree up to 6n), so a plan makes it on first use (off_curve_data), and plans

@@ -150,12 +150,11 @@ SpaceData make_space_data(const Curve& curve) {
     offsets.push_back(d);
     for (double e : d) farthest = std::max(farthest, std::abs(e));
   }
-  // A curve far narrower than its coordinates resolve is normalized to a tiny width
-  // (normalizing_exponent), whose squares would underflow: its offsets are scaled by a power of
-  // two (exact; the axes do not change) to about 1 first. A curve a few units wide is left as it is.
-  if (farthest > 0 && farthest < 0x1p-100)
+  // Rescaled where their squares would underflow or overflow (offset_rescaling: a curve far
+  // narrower than its coordinates resolve is normalized to a tiny width, normalizing_exponent).
+  if (const int shift = offset_rescaling(farthest); shift != 0)
     for (auto& d : offsets)
-      for (double& e : d) e = std::ldexp(e, -std::ilogb(farthest));
+      for (double& e : d) e = std::ldexp(e, shift);
   std::array<std::array<double, 3>, 3> covariance{}, axes{};
   for (const auto& d : offsets)
     for (int r = 0; r < 3; ++r)
