@@ -17,10 +17,13 @@
 #include <vector>
 
 #include "bezinv/bernstein.hpp"
+#include "bezinv/kernels/batch.hpp"
 #include "bezinv/curve.hpp"
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
+#include "space/space_curve.hpp"
+#include "support/bits.hpp"
 #include "support/sanitizers.hpp"
 
 namespace bezinv {
@@ -420,6 +423,63 @@ TEST(SpaceCurves, PlaneAndSpaceCurvesInOneCall) {
   EXPECT_EQ(results[2].status, Status::invalid_input);
   EXPECT_EQ(results[3].status, Status::ok);
   EXPECT_EQ(results[3].t, 0.0);
+}
+
+}  // namespace
+}  // namespace bezinv
+
+namespace bezinv {
+namespace {
+
+// The lane-batched check in space (Implementation::space_check) against the scalar code it stands
+// for: every lane it settles has space_refine's distance bit for bit, and space_refine keeps the
+// lane's t (so the answer is the same); on points on the curve and moved 1e-2..1e-6 along a normal
+// (settled: t is the foot to rounding), moved 1e-9 along z or
+// given a t 1e-12 past theirs (where the first-order test says t is not the foot: not settled, and
+// space_refine answers them); degrees 1..20, both kinds with one denominator, every implementation.
+TEST(SpaceCurves, TheBatchedCheckGivesTheScalarChecksBits) {
+  for (const kernels::Implementation* implementation : kernels::available_implementations()) {
+    std::mt19937_64 rng(20261204);
+    std::size_t lanes_total = 0, settled = 0;
+    for (CurveKind kind : {CurveKind::bezier, CurveKind::rational_bezier})
+      for (int n = 1; n <= 20; ++n) {
+        const Curve c = random_space_curve(kind, n, rng);
+        const detail::SpaceData space = detail::make_space_data(c);
+        std::vector<double> t, x, y, z;
+        for (int k = 0; k < 24; ++k) {
+          const double t0 = k == 0 ? 0.0 : k == 1 ? 1.0 : space_uniform(rng, 0.0, 1.0);
+          Vec3 p = c.point3(t0);
+          if (k % 4 == 1) p[2] += 1e-9;
+          const double start = k % 4 == 3 ? std::min(1.0, t0 + 1e-12) : t0;
+          auto q = detail::space_normalize(space, p[0], p[1], p[2]);
+          if (k % 4 == 2) {  // moved along a normal N = P' x a in normalized units: t stays the foot
+            const detail::SpaceJet jet = detail::space_jet(space, t0, 2);
+            const Vec3 a{space_uniform(rng, -1, 1), space_uniform(rng, -1, 1), space_uniform(rng, -1, 1)};
+            const Vec3 normal{jet.dp[1] * a[2] - jet.dp[2] * a[1], jet.dp[2] * a[0] - jet.dp[0] * a[2],
+                              jet.dp[0] * a[1] - jet.dp[1] * a[0]};
+            const double delta = std::pow(10.0, -2.0 - k % 5) / space_length(normal);
+            for (int j = 0; j < 3; ++j) q[j] += delta * normal[j];
+          }
+          t.push_back(start), x.push_back(q[0]), y.push_back(q[1]), z.push_back(q[2]);
+        }
+        std::vector<double> distance(t.size());
+        implementation->space_check({space.degree, space.first_order_forward.data(), space.first_order_backward.data()},
+                                    t.size(), t.data(), x.data(), y.data(), z.data(), distance.data());
+        for (std::size_t l = 0; l < t.size(); ++l) {
+          SCOPED_TRACE(std::string(implementation->name) + " " + to_string(kind) + " n=" + std::to_string(n) +
+                       " lane " + std::to_string(l));
+          ++lanes_total;
+          if (std::isnan(distance[l])) continue;
+          ++settled;
+          const detail::SpaceRefined scalar = detail::space_refine(space, {x[l], y[l], z[l]}, t[l], true);
+          EXPECT_TRUE(test_support::same_bits(scalar.distance, distance[l])) << scalar.distance << " " << distance[l];
+          EXPECT_TRUE(test_support::same_bits(scalar.t, t[l]));
+        }
+      }
+    std::printf("%s: %zu of %zu lanes settled by the batched check\n", std::string(implementation->name).c_str(),
+                settled, lanes_total);
+    EXPECT_GE(settled, lanes_total * 2 / 5) << implementation->name;
+  }
 }
 
 }  // namespace

@@ -295,6 +295,12 @@ TEST(BatchImplementations, SizesOutsideTheCompiledRangesThrow) {
           [&] { impl->rational_newton(curve, settings, count, u.data(), v.data(), t.data(), distance.data()); },
           "rational_newton", kRationalNewtonMinDegree, kRationalNewtonMaxDegree);
     }
+    for (int degree : {kSpaceCheckMinDegree - 1, kSpaceCheckMaxDegree + 1}) {
+      const SpaceCurve curve{degree, coefficients.data(), coefficients.data()};
+      expect_out_of_range(
+          [&] { impl->space_check(curve, count, t.data(), u.data(), v.data(), u.data(), distance.data()); },
+          "space_check", kSpaceCheckMinDegree, kSpaceCheckMaxDegree);
+    }
   }
 }
 

@@ -5,8 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <span>
 #include <vector>
 
+#include "bezinv/kernels/batch.hpp"
 #include "pipeline/schedule.hpp"
 #include "bezinv/tolerances.hpp"
 #include "space/space_curve.hpp"
@@ -40,6 +42,55 @@ void answer_overflowing_point(const SpaceData& space, const std::array<double, 3
   // |P(t) - P0| in input units, halved first so the differences do not overflow.
   const auto p = space.curve.point3(r.t);
   r.residual = 2 * std::hypot(0.5 * p[0] - 0.5 * given[0], 0.5 * p[1] - 0.5 * given[1], 0.5 * p[2] - 0.5 * given[2]);
+}
+
+// Step 3 of invert_space_curve for one block: every plane answer checked in space.
+//
+// The common row -- ok in the plane, refined, on a curve with one denominator -- is checked lane by
+// lane (Implementation::space_check: space_refine's first test, the same doubles, so the same
+// answer). What that does not settle within the tolerance, and every other row, goes through
+// space_answer one by one.
+void check_in_space(const SpaceData& space, std::span<const Point> points, std::span<const double> z, double tolerance,
+                    const InvertOptions& options, std::span<PointResult> results) {
+  const std::size_t count = points.size();
+  thread_local std::vector<double> t, x, y, zs, distance;
+  thread_local std::vector<std::size_t> rows;
+  t.clear(), x.clear(), y.clear(), zs.clear(), rows.clear();
+  if (options.refine && !space.first_order_forward.empty()) {
+    for (std::size_t i = 0; i < count; ++i) {
+      if (results[i].status != Status::ok) continue;
+      const std::array<double, 3> point = space_normalize(space, points[i].x, points[i].y, z[i]);
+      rows.push_back(i);
+      t.push_back(results[i].t), x.push_back(point[0]), y.push_back(point[1]), zs.push_back(point[2]);
+    }
+  }
+  distance.resize(rows.size());
+  if (!rows.empty())
+    kernels::active_implementation().space_check({space.degree, space.first_order_forward.data(),
+                                                  space.first_order_backward.data()},
+                                                 rows.size(), t.data(), x.data(), y.data(), zs.data(), distance.data());
+  std::size_t next = 0;  // the next checked row
+  for (std::size_t i = 0; i < count; ++i) {
+    PointResult& r = results[i];
+    if (next < rows.size() && rows[next] == i) {
+      const double d = distance[next++];
+      if (d <= tolerance) {  // space_answer's accept of space_refine's answer (t in [0, 1] stays)
+        r.residual = d * space.scale;
+        continue;
+      }
+    }
+    const std::array<double, 3> point = space_normalize(space, points[i].x, points[i].y, z[i]);
+    // A finite point whose projection overflowed (more than the largest double from the centre,
+    // for a curve near the end of the double range) came back invalid_input from the plane
+    // engine. It is not: it gets the nearest point of the segment in space, as a point the plane
+    // puts off the curve does.
+    if (r.status == Status::invalid_input && std::isfinite(points[i].x) && std::isfinite(points[i].y) &&
+        std::isfinite(z[i])) {
+      answer_overflowing_point(space, {points[i].x, points[i].y, z[i]}, point, tolerance, r);
+      continue;
+    }
+    space_answer(space, point, tolerance, options, r);
+  }
 }
 
 }  // namespace
@@ -92,19 +143,8 @@ void invert_space_curve(const PlanData& plan, std::span<const Point> points, std
                        stages ? &local : nullptr);
           // 3. Every answer in space.
           start = std::chrono::steady_clock::now();
-          for (std::size_t i = begin; i < end; ++i) {
-            const std::array<double, 3> point = space_normalize(space, points[i].x, points[i].y, z[i]);
-            // A finite point whose projection overflowed (more than the largest double from the
-            // centre, for a curve near the end of the double range) came back invalid_input from
-            // the plane engine. It is not: it gets the nearest point of the segment in space, as a
-            // point the plane puts off the curve does.
-            if (results[i].status == Status::invalid_input && std::isfinite(points[i].x) &&
-                std::isfinite(points[i].y) && std::isfinite(z[i])) {
-              answer_overflowing_point(space, {points[i].x, points[i].y, z[i]}, point, tolerance, results[i]);
-              continue;
-            }
-            space_answer(space, point, tolerance, options, results[i]);
-          }
+          check_in_space(space, points.subspan(begin, size), z.subspan(begin, size), tolerance, options,
+                         results.subspan(begin, size));
           if (stages) space_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         }
         if (!stages) return;

@@ -49,12 +49,13 @@ struct Table {
       const auto parameter = batch::bernstein_parameter_kernel(kCandidates[i].target);
       const auto bezout = batch::bezout_matrix_kernel(kCandidates[i].target);
       const auto bezout_seed = batch::bezout_null_vector_seed_kernel(kCandidates[i].target);
+      const auto space_check = batch::space_check_kernel(kCandidates[i].target);
       if (svd == nullptr || null == nullptr || null_seed == nullptr || newton == nullptr ||
-          parameter == nullptr || bezout == nullptr || bezout_seed == nullptr ||
+          parameter == nullptr || bezout == nullptr || bezout_seed == nullptr || space_check == nullptr ||
           (supported & kCandidates[i].target) == 0)
         continue;
       storage[count] =
-          Implementation{kCandidates[i].name, svd, null, null_seed, newton, parameter, bezout, bezout_seed};
+          Implementation{kCandidates[i].name, svd, null, null_seed, newton, parameter, bezout, bezout_seed, space_check};
       available[count] = &storage[count];
       ++count;
     }

@@ -25,6 +25,8 @@ using BezoutNullVectorSeedKernel = void (*)(int n, std::size_t count, std::size_
                                             const double* Bx, const double* By, const double* Bxy, const double* u,
                                             const double* v, double* z, double* defect, double* residual,
                                             double* poison);
+using SpaceCheckKernel = void (*)(const SpaceCurve& curve, std::size_t count, const double* t, const double* x,
+                                  const double* y, const double* z, double* distance);
 
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);
@@ -34,5 +36,6 @@ RationalNewtonKernel rational_newton_kernel(std::int64_t target);
 BernsteinParameterKernel bernstein_parameter_kernel(std::int64_t target);
 BezoutMatrixKernel bezout_matrix_kernel(std::int64_t target);
 BezoutNullVectorSeedKernel bezout_null_vector_seed_kernel(std::int64_t target);
+SpaceCheckKernel space_check_kernel(std::int64_t target);
 
 }  // namespace bezinv::kernels::batch

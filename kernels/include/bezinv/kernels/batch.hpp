@@ -40,6 +40,8 @@ inline constexpr int kBernsteinParameterMinSize = 2;      // bernstein_parameter
 inline constexpr int kBernsteinParameterMaxSize = kMaxBatchSize;
 inline constexpr int kRationalNewtonMinDegree = 1;        // rational_newton: the curve's degree
 inline constexpr int kRationalNewtonMaxDegree = kMaxBatchSize;
+inline constexpr int kSpaceCheckMinDegree = 1;            // space_check: the curve's degree
+inline constexpr int kSpaceCheckMaxDegree = kMaxBatchSize;
 
 // The plane curve of rational_newton, (x_num / x_den, y_num / y_den): four polynomials in the
 // Bernstein basis of degree `degree` (kRationalNewtonMinDegree..kRationalNewtonMaxDegree),
@@ -59,6 +61,19 @@ struct NewtonSettings {
   double trusted_step;  // steps up to this are taken without the descent test
   int max_halvings;     // of a larger step, looking for descent
   double final_step;    // a step up to this, where f' >= |P'|^2 / 2, is the last (see rational_newton)
+};
+
+// The space curve of space_check, P = (x, y, z) / D with one denominator, of degree `degree`
+// (kSpaceCheckMinDegree..kSpaceCheckMaxDegree), laid out for Horner's rule on eight polynomials
+// side by side (the engine's SpaceData::first_order_forward and first_order_backward): entry
+// i * 8 + j, i = 0..degree, is coefficient i, times C(degree, i), of x, y, z, D (j = 0..3) and,
+// times C(degree - 1, i), of their derivatives (j = 4..7; degree - 1, so one coefficient fewer:
+// `forward` has a zero at i = degree, `backward` has the derivatives shifted up by one, a zero at
+// i = 0).
+struct SpaceCurve {
+  int degree;
+  const double* forward;
+  const double* backward;
 };
 
 // One instruction set's kernels. All function pointers are non-null.
@@ -155,6 +170,17 @@ struct Implementation {
   void (*bezout_null_vector_seed)(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
                                   const double* By, const double* Bxy, const double* u, const double* v, double* z,
                                   double* defect, double* residual, double* poison);
+
+  // The check in space of a space curve's answers (engine/src/space/space_curve.cpp, space_refine's
+  // first test), one point per lane: P(t) and P'(t) at the lane's t[l] in [0, 1] by Horner's rule,
+  // the distance to the point (x[l], y[l], z[l]), and whether the Newton step of
+  // (P - P0) . P' is below rounding (|g| / |P'|^2 <= 2 eps + 2 eps / |P'|): t is then the nearest
+  // parameter to rounding. distance[l] = |P(t) - P0| where it is, NaN where it is not, where t is
+  // not in [0, 1] or the distance is not finite (the caller runs the scalar code for those). The
+  // operations are the engine's scalar ones in the same order, without fused multiply-add: a lane
+  // settled here has the engine's bits. Arrays have `count` entries.
+  void (*space_check)(const SpaceCurve& curve, std::size_t count, const double* t, const double* x, const double* y,
+                      const double* z, double* distance);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the
