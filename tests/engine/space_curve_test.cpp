@@ -97,8 +97,9 @@ std::string space_describe(const Curve& c, double t, const Vec3& p, const PointR
 
 constexpr CurveKind kSpaceKinds[] = {CurveKind::bezier, CurveKind::rational_bezier, CurveKind::rational};
 
-// Separate denominators: three different ones project to a plane curve of degree 3n (at most 32).
-int space_max_degree(CurveKind kind) { return kind == CurveKind::rational ? 10 : 20; }
+// Every kind to degree 20: with separate denominators the curve is projected on a coordinate plane,
+// at its own degree (a principal projection would be of degree 3n, at most 32: n <= 10).
+int space_max_degree(CurveKind) { return 20; }
 
 TEST(SpaceCurves, PointsOnTheSegmentAtTheirEndsAndOnTheExtension) {
   int rows = 0;
@@ -431,17 +432,92 @@ TEST(SpaceCurves, PlaneAndSpaceCurvesInOneCall) {
 namespace bezinv {
 namespace {
 
+// A curve with separate denominators is projected on the coordinate plane where it spreads most,
+// at its own degree, each coordinate over its own denominator; the plane's two coordinates are the
+// curve's own, less the centre.
+TEST(SpaceCurves, SeparateDenominatorsProjectOnACoordinatePlaneAtTheirDegree) {
+  std::mt19937_64 rng(8);
+  for (int n = 1; n <= 20; ++n) {
+    const Curve c = random_space_curve(CurveKind::rational, n, rng);
+    const detail::SpaceData space = detail::make_space_data(c);
+    ASSERT_GE(space.axes[0], 0) << n;
+    const Curve flat = detail::projected_curve(space);
+    EXPECT_EQ(flat.degree(), n);
+    const std::array<const std::vector<double>*, 3> dens{&c.x_den, &c.y_den, &c.z_den};
+    EXPECT_EQ(flat.x_den, *dens[space.axes[0]]);
+    EXPECT_EQ(flat.y_den, *dens[space.axes[1]]);
+    for (double t : {0.0, 0.3, 1.0}) {
+      const Vec3 p = c.point3(t);
+      const auto q = flat.point(t);
+      EXPECT_NEAR(q[0], p[space.axes[0]] - space.centre[space.axes[0]], 1e-13) << n;
+      EXPECT_NEAR(q[1], p[space.axes[1]] - space.centre[space.axes[1]], 1e-13) << n;
+    }
+  }
+  // Flattened along z (the curve 50 times thinner in z than in x and y): the xy plane, where it
+  // spreads as on its principal plane.
+  std::vector<std::vector<double>> num(3), den(3);
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i <= 4; ++i) {
+      den[k].push_back(space_uniform(rng, 0.5, 2.0));
+      num[k].push_back(den[k][i] * space_uniform(rng, 0.0, k == 2 ? 0.02 : 1.0));
+    }
+  const Curve thin = Curve::space_rational("z", num[0], den[0], num[1], den[1], num[2], den[2]);
+  const detail::SpaceData space = detail::make_space_data(thin);
+  EXPECT_EQ(space.axes[0], 0);
+  EXPECT_EQ(space.axes[1], 1);
+  // A line along z: its projection on xy would be a point; on xz or yz it is the line.
+  const Curve line = Curve::space_rational("l", {0.5, 1.0}, {1, 2}, {0.25, 0.75}, {1, 3}, {0, 2}, {1, 1.5});
+  const detail::SpaceData along_z = detail::make_space_data(line);
+  EXPECT_EQ(along_z.axes[1], 2);
+  EXPECT_EQ(detail::projected_curve(along_z).degree(), 1);
+  // The line x = y = z = t (its denominators 1, 2, 3 times one another): any coordinate plane keeps
+  // it a line, and its points invert at their t.
+  const Curve diagonal = Curve::space_rational("d", {0, 1}, {1, 1}, {0, 2}, {2, 2}, {0, 3}, {3, 3});
+  EXPECT_GE(detail::make_space_data(diagonal).axes[0], 0);
+  const InversionPlan plan = make_plan(diagonal);
+  for (double t : {0.0, 0.25, 0.6, 1.0}) {
+    const PointResult r = invert_point(plan, Point3(t, t, t));
+    EXPECT_EQ(r.status, Status::ok) << t;
+    EXPECT_NEAR(r.t, t, 1e-14) << t;
+  }
+}
+
+// P and P' from the one Horner loop of every polynomial and its derivative side by side
+// (SpaceData::first_order_forward, width 8 with one denominator, 16 with three) are the doubles of
+// the general evaluation, which evaluates the values and the derivatives in loops of their own.
+TEST(SpaceCurves, TheOneLoopJetIsTheGeneralJetBitForBit) {
+  std::mt19937_64 rng(77);
+  int compared = 0;
+  for (CurveKind kind : kSpaceKinds)
+    for (int n = 1; n <= 20; ++n) {
+      const Curve c = random_space_curve(kind, n, rng);
+      const detail::SpaceData space = detail::make_space_data(c);
+      EXPECT_EQ(space.first_order_width, kind == CurveKind::rational ? 16 : 8);
+      for (int k = 0; k < 50; ++k) {
+        const double t = k == 0 ? 0.0 : k == 1 ? 1.0 : k == 2 ? 0.5 : space_uniform(rng, 0.0, 1.0);
+        const detail::SpaceJet one_loop = detail::space_jet(space, t, 2), general = detail::space_jet(space, t, 3);
+        for (int j = 0; j < 3; ++j) {
+          EXPECT_TRUE(test_support::same_bits(one_loop.p[j], general.p[j])) << to_string(kind) << " n=" << n << " t=" << t;
+          EXPECT_TRUE(test_support::same_bits(one_loop.dp[j], general.dp[j])) << to_string(kind) << " n=" << n << " t=" << t;
+        }
+        ++compared;
+      }
+    }
+  EXPECT_EQ(compared, 3 * 20 * 50);
+}
+
 // The lane-batched check in space (Implementation::space_check) against the scalar code it stands
 // for: every lane it settles has space_refine's distance bit for bit, and space_refine keeps the
 // lane's t (so the answer is the same); on points on the curve and moved 1e-2..1e-6 along a normal
 // (settled: t is the foot to rounding), moved 1e-9 along z or
 // given a t 1e-12 past theirs (where the first-order test says t is not the foot: not settled, and
-// space_refine answers them); degrees 1..20, both kinds with one denominator, every implementation.
+// space_refine answers them); degrees 1..20, every kind (one denominator and three), every
+// implementation.
 TEST(SpaceCurves, TheBatchedCheckGivesTheScalarChecksBits) {
   for (const kernels::Implementation* implementation : kernels::available_implementations()) {
     std::mt19937_64 rng(20261204);
     std::size_t lanes_total = 0, settled = 0;
-    for (CurveKind kind : {CurveKind::bezier, CurveKind::rational_bezier})
+    for (CurveKind kind : kSpaceKinds)
       for (int n = 1; n <= 20; ++n) {
         const Curve c = random_space_curve(kind, n, rng);
         const detail::SpaceData space = detail::make_space_data(c);
@@ -463,7 +539,8 @@ TEST(SpaceCurves, TheBatchedCheckGivesTheScalarChecksBits) {
           t.push_back(start), x.push_back(q[0]), y.push_back(q[1]), z.push_back(q[2]);
         }
         std::vector<double> distance(t.size());
-        implementation->space_check({space.degree, space.first_order_forward.data(), space.first_order_backward.data()},
+        implementation->space_check({space.degree, space.first_order_width == 8 ? 1 : 3,
+                                     space.first_order_forward.data(), space.first_order_backward.data()},
                                     t.size(), t.data(), x.data(), y.data(), z.data(), distance.data());
         for (std::size_t l = 0; l < t.size(); ++l) {
           SCOPED_TRACE(std::string(implementation->name) + " " + to_string(kind) + " n=" + std::to_string(n) +

@@ -296,7 +296,7 @@ TEST(BatchImplementations, SizesOutsideTheCompiledRangesThrow) {
           "rational_newton", kRationalNewtonMinDegree, kRationalNewtonMaxDegree);
     }
     for (int degree : {kSpaceCheckMinDegree - 1, kSpaceCheckMaxDegree + 1}) {
-      const SpaceCurve curve{degree, coefficients.data(), coefficients.data()};
+      const SpaceCurve curve{degree, 1, coefficients.data(), coefficients.data()};
       expect_out_of_range(
           [&] { impl->space_check(curve, count, t.data(), u.data(), v.data(), u.data(), distance.data()); },
           "space_check", kSpaceCheckMinDegree, kSpaceCheckMaxDegree);

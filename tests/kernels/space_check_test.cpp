@@ -1,7 +1,7 @@
 // The lane-batched check in space (Implementation::space_check), every available implementation,
-// degrees 1..32, batch sizes around the vector widths. Expected distances come from construction:
-// points made exactly (GMP) at a known t, on the curve or moved off it along a normal, and the
-// distance to them measured exactly. tests/engine/space_curve_test.cpp checks the kernel against
+// degrees 1..32, one denominator and three, batch sizes around the vector widths. Expected
+// distances come from construction: points made exactly (GMP) at a known t, on the curve or moved
+// off it along a normal, and the distance to them measured exactly. tests/engine/space_curve_test.cpp checks the kernel against
 // the engine's scalar check bit for bit.
 #include <gtest/gtest.h>
 
@@ -25,55 +25,63 @@ using test_support::kNaN;
 using test_support::same_bits;
 using test_support::sci;
 
-// A random space curve with one denominator in the kernel's layout (SpaceCurve): the value
-// entries e_ij (x, y, z, D: control points in [-1, 1]^3 times weights in [0.5, 2], times C(n, i)),
-// and the derivatives' entries computed exactly from them and rounded. The curve under test is
-// the one the value entries define, exactly: V_j(t) = sum_i e_ij (1 - t)^(n - i) t^i.
+// A random space curve in the kernel's layout (SpaceCurve), with one denominator or three: the
+// value entries e_ij (x, y, z and the denominators: control points in [-1, 1]^3 times weights in
+// [0.5, 2], times C(n, i)), and the derivatives' entries computed exactly from them and rounded.
+// The curve under test is the one the value entries define, exactly:
+// V_j(t) = sum_i e_ij (1 - t)^(n - i) t^i.
 struct SpaceCheckCurve {
-  int n = 0;
+  int n = 0, denominators = 1;
   std::vector<double> forward, backward;
-  std::array<exact::Poly, 4> value;  // Bernstein coefficients e_ij / C(n, i), exact
-  std::array<exact::Poly, 4> slope;  // their derivatives (degree n - 1), exact
-  SpaceCurve view() const { return {n, forward.data(), backward.data()}; }
+  // Bernstein coefficients e_ij / C(n, i), exact, of x, y, z and of the denominators of x, y, z
+  // (the same three with one denominator), and their derivatives (degree n - 1).
+  std::array<exact::Poly, 6> value, slope;
+  SpaceCurve view() const { return {n, denominators, forward.data(), backward.data()}; }
 
   // P(t) and P'(t), exactly.
   std::array<mpq_class, 3> point(const mpq_class& t) const {
-    const mpq_class w = exact::bernstein_value(value[3], t);
-    return {exact::bernstein_value(value[0], t) / w, exact::bernstein_value(value[1], t) / w,
-            exact::bernstein_value(value[2], t) / w};
+    std::array<mpq_class, 3> p;
+    for (int k = 0; k < 3; ++k) p[k] = exact::bernstein_value(value[k], t) / exact::bernstein_value(value[3 + k], t);
+    return p;
   }
   std::array<mpq_class, 3> tangent(const mpq_class& t) const {
-    const mpq_class w = exact::bernstein_value(value[3], t), dw = exact::bernstein_value(slope[3], t);
     std::array<mpq_class, 3> d;
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 3; ++k) {
+      const mpq_class w = exact::bernstein_value(value[3 + k], t), dw = exact::bernstein_value(slope[3 + k], t);
       d[k] = (exact::bernstein_value(slope[k], t) * w - exact::bernstein_value(value[k], t) * dw) / (w * w);
+    }
     return d;
   }
 };
 
-SpaceCheckCurve random_space_check_curve(int n, std::mt19937_64& rng) {
+SpaceCheckCurve random_space_check_curve(int n, std::mt19937_64& rng, int denominators = 1) {
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0), weight(0.5, 2.0);
   SpaceCheckCurve c;
   c.n = n;
-  c.forward.assign(8 * static_cast<std::size_t>(n + 1), 0.0);
+  c.denominators = denominators;
+  const int width = denominators == 1 ? 8 : 16, polynomials = denominators == 1 ? 4 : 6, slopes = width / 2;
+  c.forward.assign(static_cast<std::size_t>(width) * (n + 1), 0.0);
   c.backward = c.forward;
   for (int i = 0; i <= n; ++i) {
-    const double w = weight(rng);
+    double w[3];
+    for (double& v : w) v = weight(rng);
+    if (denominators == 1) w[1] = w[2] = w[0];
     const double binomial = exact::binomial(n, i).get_d();
-    for (int j = 0; j < 4; ++j) {
-      const double entry = (j < 3 ? w * coordinate(rng) : w) * binomial;
-      c.forward[8 * i + j] = c.backward[8 * i + j] = entry;
+    for (int j = 0; j < polynomials; ++j) {
+      const double entry = (j < 3 ? w[j] * coordinate(rng) : w[j - 3]) * binomial;
+      c.forward[width * i + j] = c.backward[width * i + j] = entry;
       c.value[j].push_back(mpq_class(entry) / exact::binomial(n, i));
     }
   }
-  for (int j = 0; j < 4; ++j) {
+  for (int j = 0; j < polynomials; ++j) {
     c.slope[j] = exact::derivative(c.value[j]);
     for (int i = 0; i < n; ++i) {
       const double entry = exact::nearest_double(c.slope[j][i] * exact::binomial(n - 1, i));
-      c.forward[8 * i + 4 + j] = entry;
-      c.backward[8 * (i + 1) + 4 + j] = entry;
+      c.forward[width * i + slopes + j] = entry;
+      c.backward[width * (i + 1) + slopes + j] = entry;
     }
   }
+  if (denominators == 1) c.value[4] = c.value[5] = c.value[3], c.slope[4] = c.slope[5] = c.slope[3];
   return c;
 }
 
@@ -112,24 +120,25 @@ TEST(SpaceCheck, OnCurvePointsAreSettledWithTheirDistance) {
   std::vector<double> worst(implementations.size());
   std::size_t lanes_total = 0;
   std::mt19937_64 rng(20261204);
-  for (int n = kSpaceCheckMinDegree; n <= kSpaceCheckMaxDegree; ++n) {
-    const SpaceCheckCurve c = random_space_check_curve(n, rng);
-    SpaceCheckLanes lanes;
-    std::vector<double> ts = {0.0, 0.5, 1.0, 0.25, 0.75};
-    for (int k = 0; k < 11; ++k) ts.push_back(std::uniform_real_distribution<double>(0.0, 1.0)(rng));
-    for (double t : ts) lanes.add(t, rounded_point(c.point(mpq_class(t))));
-    lanes_total += ts.size();
-    for (std::size_t m = 0; m < implementations.size(); ++m) {
-      lanes.run(*implementations[m], c);
-      for (std::size_t l = 0; l < ts.size(); ++l) {
-        SCOPED_TRACE(std::string(implementations[m]->name) + " n=" + std::to_string(n) + " lane " + std::to_string(l));
-        if (std::isnan(lanes.distance[l])) continue;
-        ++settled[m];
-        EXPECT_LE(lanes.distance[l], 1e-14);
-        worst[m] = std::max(worst[m], lanes.distance[l]);
+  for (int denominators : {1, 3})
+    for (int n = kSpaceCheckMinDegree; n <= kSpaceCheckMaxDegree; n += denominators == 1 ? 1 : 3) {
+      const SpaceCheckCurve c = random_space_check_curve(n, rng, denominators);
+      SpaceCheckLanes lanes;
+      std::vector<double> ts = {0.0, 0.5, 1.0, 0.25, 0.75};
+      for (int k = 0; k < 11; ++k) ts.push_back(std::uniform_real_distribution<double>(0.0, 1.0)(rng));
+      for (double t : ts) lanes.add(t, rounded_point(c.point(mpq_class(t))));
+      lanes_total += ts.size();
+      for (std::size_t m = 0; m < implementations.size(); ++m) {
+        lanes.run(*implementations[m], c);
+        for (std::size_t l = 0; l < ts.size(); ++l) {
+          SCOPED_TRACE(std::string(implementations[m]->name) + " n=" + std::to_string(n) + " lane " + std::to_string(l));
+          if (std::isnan(lanes.distance[l])) continue;
+          ++settled[m];
+          EXPECT_LE(lanes.distance[l], 1e-14);
+          worst[m] = std::max(worst[m], lanes.distance[l]);
+        }
       }
     }
-  }
   for (std::size_t m = 0; m < implementations.size(); ++m) {
     std::printf("%s: %zu of %zu on-curve lanes settled, worst distance %s\n",
                 std::string(implementations[m]->name).c_str(), settled[m], lanes_total, sci(worst[m]).c_str());
@@ -146,40 +155,41 @@ TEST(SpaceCheck, PointsAlongANormalGetTheirDistance) {
   std::vector<double> worst(implementations.size());
   std::size_t lanes_total = 0;
   std::mt19937_64 rng(42);
-  for (int n = kSpaceCheckMinDegree; n <= kSpaceCheckMaxDegree; ++n) {
-    const SpaceCheckCurve c = random_space_check_curve(n, rng);
-    SpaceCheckLanes lanes;
-    std::vector<double> truth;
-    for (int k = 0; k < 8; ++k) {
-      const double t = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
-      const double delta = std::pow(10.0, -1.0 - 3.0 * k / 8);  // 1e-1 .. 1e-4
-      const auto p = c.point(mpq_class(t));
-      const auto d = c.tangent(mpq_class(t));
-      std::array<mpq_class, 3> a;
-      for (auto& e : a) e = std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
-      const std::array<mpq_class, 3> normal = {d[1] * a[2] - d[2] * a[1], d[2] * a[0] - d[0] * a[2],
-                                               d[0] * a[1] - d[1] * a[0]};
-      const double length =
-          std::sqrt(mpq_class(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).get_d());
-      std::array<mpq_class, 3> q;
-      for (int j = 0; j < 3; ++j) q[j] = p[j] + mpq_class(delta / length) * normal[j];
-      const auto point = rounded_point(q);
-      lanes.add(t, point);
-      truth.push_back(exact_space_distance(p, point));
-    }
-    lanes_total += truth.size();
-    for (std::size_t m = 0; m < implementations.size(); ++m) {
-      lanes.run(*implementations[m], c);
-      for (std::size_t l = 0; l < truth.size(); ++l) {
-        SCOPED_TRACE(std::string(implementations[m]->name) + " n=" + std::to_string(n) + " lane " + std::to_string(l));
-        if (std::isnan(lanes.distance[l])) continue;
-        ++settled[m];
-        const double error = std::abs(lanes.distance[l] - truth[l]);
-        EXPECT_LE(error, 1e-14) << lanes.distance[l] << " " << truth[l];
-        worst[m] = std::max(worst[m], error);
+  for (int denominators : {1, 3})
+    for (int n = kSpaceCheckMinDegree; n <= kSpaceCheckMaxDegree; n += denominators == 1 ? 1 : 3) {
+      const SpaceCheckCurve c = random_space_check_curve(n, rng, denominators);
+      SpaceCheckLanes lanes;
+      std::vector<double> truth;
+      for (int k = 0; k < 8; ++k) {
+        const double t = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+        const double delta = std::pow(10.0, -1.0 - 3.0 * k / 8);  // 1e-1 .. 1e-4
+        const auto p = c.point(mpq_class(t));
+        const auto d = c.tangent(mpq_class(t));
+        std::array<mpq_class, 3> a;
+        for (auto& e : a) e = std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
+        const std::array<mpq_class, 3> normal = {d[1] * a[2] - d[2] * a[1], d[2] * a[0] - d[0] * a[2],
+                                                 d[0] * a[1] - d[1] * a[0]};
+        const double length =
+            std::sqrt(mpq_class(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).get_d());
+        std::array<mpq_class, 3> q;
+        for (int j = 0; j < 3; ++j) q[j] = p[j] + mpq_class(delta / length) * normal[j];
+        const auto point = rounded_point(q);
+        lanes.add(t, point);
+        truth.push_back(exact_space_distance(p, point));
+      }
+      lanes_total += truth.size();
+      for (std::size_t m = 0; m < implementations.size(); ++m) {
+        lanes.run(*implementations[m], c);
+        for (std::size_t l = 0; l < truth.size(); ++l) {
+          SCOPED_TRACE(std::string(implementations[m]->name) + " n=" + std::to_string(n) + " lane " + std::to_string(l));
+          if (std::isnan(lanes.distance[l])) continue;
+          ++settled[m];
+          const double error = std::abs(lanes.distance[l] - truth[l]);
+          EXPECT_LE(error, 1e-14) << lanes.distance[l] << " " << truth[l];
+          worst[m] = std::max(worst[m], error);
+        }
       }
     }
-  }
   for (std::size_t m = 0; m < implementations.size(); ++m) {
     std::printf("%s: %zu of %zu normal lanes settled, worst |distance error| %s\n",
                 std::string(implementations[m]->name).c_str(), settled[m], lanes_total, sci(worst[m]).c_str());
@@ -194,7 +204,7 @@ TEST(SpaceCheck, LanesItCannotSettleAreNaN) {
     std::mt19937_64 rng(3);
     for (int n : {1, 2, 3, 7, 20, 32}) {
       SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n));
-      const SpaceCheckCurve c = random_space_check_curve(n, rng);
+      const SpaceCheckCurve c = random_space_check_curve(n, rng, n % 2 == 0 ? 3 : 1);
       SpaceCheckLanes lanes;
       for (double h : {1e-9, -1e-9, 1e-6, 1e-3})
         lanes.add(0.4, rounded_point(c.point(mpq_class(0.4 + h))));
@@ -216,7 +226,7 @@ TEST(SpaceCheck, LanesItCannotSettleAreNaN) {
 TEST(SpaceCheck, SameBitsAtEveryBatchSizeAndOnEveryImplementation) {
   std::mt19937_64 rng(11);
   for (int n : {1, 2, 3, 5, 8, 15, 32}) {
-    const SpaceCheckCurve c = random_space_check_curve(n, rng);
+    const SpaceCheckCurve c = random_space_check_curve(n, rng, n % 2 == 0 ? 3 : 1);
     SpaceCheckLanes all;
     for (int l = 0; l < 19; ++l) {
       const double t = std::uniform_real_distribution<double>(0.0, 1.0)(rng);

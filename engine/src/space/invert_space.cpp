@@ -46,17 +46,16 @@ void answer_overflowing_point(const SpaceData& space, const std::array<double, 3
 
 // Step 3 of invert_space_curve for one block: every plane answer checked in space.
 //
-// The common row -- ok in the plane, refined, on a curve with one denominator -- is checked lane by
-// lane (Implementation::space_check: space_refine's first test, the same doubles, so the same
-// answer). What that does not settle within the tolerance, and every other row, goes through
-// space_answer one by one.
+// The common row -- ok in the plane, refined -- is checked lane by lane (Implementation::space_check:
+// space_refine's first test, the same doubles, so the same answer). What that does not settle
+// within the tolerance, and every other row, goes through space_answer one by one.
 void check_in_space(const SpaceData& space, std::span<const Point> points, std::span<const double> z, double tolerance,
                     const InvertOptions& options, std::span<PointResult> results) {
   const std::size_t count = points.size();
   thread_local std::vector<double> t, x, y, zs, distance;
   thread_local std::vector<std::size_t> rows;
   t.clear(), x.clear(), y.clear(), zs.clear(), rows.clear();
-  if (options.refine && !space.first_order_forward.empty()) {
+  if (options.refine) {
     for (std::size_t i = 0; i < count; ++i) {
       if (results[i].status != Status::ok) continue;
       const std::array<double, 3> point = space_normalize(space, points[i].x, points[i].y, z[i]);
@@ -66,9 +65,10 @@ void check_in_space(const SpaceData& space, std::span<const Point> points, std::
   }
   distance.resize(rows.size());
   if (!rows.empty())
-    kernels::active_implementation().space_check({space.degree, space.first_order_forward.data(),
-                                                  space.first_order_backward.data()},
-                                                 rows.size(), t.data(), x.data(), y.data(), zs.data(), distance.data());
+    kernels::active_implementation().space_check(
+        {space.degree, space.first_order_width == 8 ? 1 : 3, space.first_order_forward.data(),
+         space.first_order_backward.data()},
+        rows.size(), t.data(), x.data(), y.data(), zs.data(), distance.data());
   std::size_t next = 0;  // the next checked row
   for (std::size_t i = 0; i < count; ++i) {
     PointResult& r = results[i];

@@ -168,6 +168,35 @@ SpaceData make_space_data(const Curve& curve) {
     const double sign = axes[largest][c] < 0 ? -1.0 : 1.0;
     for (int k = 0; k < 3; ++k) (c == 0 ? space.a : space.b)[k] = sign * axes[k][c];
   }
+  if (!curve.common_denominator()) {
+    // Separate denominators: a combination of x, y, z is over their product (degree up to 3n),
+    // a coordinate is over its own (degree n). So a coordinate plane, unless the curve is much
+    // narrower there than on its principal plane (a projection that crowds the curve's branches
+    // together or collapses a line to a point): both spreads on the coordinate plane (its
+    // covariance's eigenvalues) at least kCoordinatePlaneSpread of the principal plane's, to the
+    // covariance's rounding (a line's smaller spread is zero to it); of those, the widest.
+    double principal[2] = {0, 0};  // a^T C a, b^T C b
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        principal[0] += space.a[r] * covariance[r][c] * space.a[c];
+        principal[1] += space.b[r] * covariance[r][c] * space.b[c];
+      }
+    const double slack = 1e-12 * principal[0];
+    double best = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 2; ++i)
+      for (int j = i + 1; j < 3; ++j) {
+        const double mean = 0.5 * (covariance[i][i] + covariance[j][j]),
+                     half = 0.5 * (covariance[i][i] - covariance[j][j]);
+        const double larger = mean + std::hypot(half, covariance[i][j]), smaller = mean - std::hypot(half, covariance[i][j]);
+        if (larger >= kCoordinatePlaneSpread * principal[0] - slack &&
+            smaller >= kCoordinatePlaneSpread * principal[1] - slack && smaller > best)
+          best = smaller, space.axes = {i, j};
+      }
+    if (space.axes[0] >= 0) {
+      space.a = space.b = {0.0, 0.0, 0.0};
+      space.a[space.axes[0]] = space.b[space.axes[1]] = 1.0;
+    }
+  }
 
   // The normalized curve: (x_k - c_k) / scale = (N_k - c_k D_k) / (scale D_k), each pair divided by
   // its largest denominator coefficient.
@@ -198,16 +227,19 @@ SpaceData make_space_data(const Curve& curve) {
         space.interleaved[r][8 * i + 3 + k] = dens_r[k].binomial_c[i];
       }
   }
-  if (curve.common_denominator()) {
-    space.first_order_forward.assign(8 * static_cast<std::size_t>(n + 1), 0.0);
-    space.first_order_backward.assign(8 * static_cast<std::size_t>(n + 1), 0.0);
+  {
+    const bool common = curve.common_denominator();
+    const int width = common ? 8 : 16, slopes = common ? 4 : 8;  // where the derivatives start
+    space.first_order_width = width;
+    space.first_order_forward.assign(static_cast<std::size_t>(width) * (n + 1), 0.0);
+    space.first_order_backward.assign(static_cast<std::size_t>(width) * (n + 1), 0.0);
     for (int i = 0; i <= n; ++i)
-      for (int j = 0; j < 4; ++j) {
-        const SpacePolynomial& value = j < 3 ? space.num[j] : space.den[0];
-        const SpacePolynomial& slope = j < 3 ? space.d_num[j] : space.d_den[0];
-        space.first_order_forward[8 * i + j] = space.first_order_backward[8 * i + j] = value.binomial_c[i];
-        if (i < n) space.first_order_forward[8 * i + 4 + j] = slope.binomial_c[i];
-        if (i > 0) space.first_order_backward[8 * i + 4 + j] = slope.binomial_c[i - 1];
+      for (int j = 0; j < (common ? 4 : 6); ++j) {
+        const SpacePolynomial& value = j < 3 ? space.num[j] : space.den[common ? 0 : j - 3];
+        const SpacePolynomial& slope = j < 3 ? space.d_num[j] : space.d_den[common ? 0 : j - 3];
+        space.first_order_forward[width * i + j] = space.first_order_backward[width * i + j] = value.binomial_c[i];
+        if (i < n) space.first_order_forward[width * i + slopes + j] = slope.binomial_c[i];
+        if (i > 0) space.first_order_backward[width * i + slopes + j] = slope.binomial_c[i - 1];
       }
   }
   const int samples = sample_count(n);
@@ -217,8 +249,8 @@ SpaceData make_space_data(const Curve& curve) {
     for (int k = 0; k < 3; ++k) space.samples[3 * j + k] = space.num[k](t) / space.den[k](t);
   }
 
-  // The projection's degree with separate denominators: the product of the distinct ones.
-  if (!curve.common_denominator()) {
+  // The principal projection's degree with separate denominators: the product of the distinct ones.
+  if (!curve.common_denominator() && space.axes[0] < 0) {
     int distinct = 1 + (curve.y_den != curve.x_den) + (curve.z_den != curve.x_den && curve.z_den != curve.y_den);
     if (distinct * n > kMaxDegree)
       throw CurveError("curve " + quoted_excerpt(curve.id) + ": a space curve with " + std::to_string(distinct) +
@@ -255,7 +287,19 @@ Curve projected_curve(const SpaceData& space) {
     flat.y_den = curve.x_den;
     return flat;
   }
-  // Separate denominators: over the product D of the distinct ones, each term times D / D_k.
+  if (space.axes[0] >= 0) {
+    // A coordinate plane: u = x_i - c_i = (N_i - c_i D_i) / D_i, each over its own denominator.
+    flat.kind = CurveKind::rational;
+    for (int c = 0; c < 2; ++c) {
+      const int k = space.axes[c];
+      std::vector<double> homogeneous(n + 1);
+      for (int i = 0; i <= n; ++i) homogeneous[i] = (*nums[k])[i] - space.centre[k] * (*dens[k])[i];
+      (c == 0 ? flat.x_num : flat.y_num) = homogeneous;
+      (c == 0 ? flat.x_den : flat.y_den) = *dens[k];
+    }
+    return flat;
+  }
+  // The principal plane: over the product D of the distinct denominators, each term times D / D_k.
   std::vector<const std::vector<double>*> distinct;
   for (const auto* d : dens)
     if (std::none_of(distinct.begin(), distinct.end(), [&](const auto* e) { return *e == *d; })) distinct.push_back(d);
@@ -282,24 +326,25 @@ namespace {
 
 // The six polynomials num x, y, z, den x, y, z of derivative order r at t in [0, 1], side by side
 // (SpaceData::interleaved): Horner's rule in s = t / (1 - t) (or (1 - t) / t past 1/2), times u^m.
-// Eight polynomials of degree m side by side (c: entry i * 8 + j is coefficient i of polynomial
-// j) by Horner's rule in s: from the top coefficient down (forward) or from coefficient 0 up.
-void horner8(const std::vector<double>& c, int m, bool forward, double s, double (&v)[8]) {
+// W polynomials of degree m side by side (c: entry i * W + j is coefficient i of polynomial j) by
+// Horner's rule in s: from the top coefficient down (forward) or from coefficient 0 up.
+template <int W>
+void horner_side_by_side(const std::vector<double>& c, int m, bool forward, double s, double (&v)[W]) {
   if (forward) {
-    for (int j = 0; j < 8; ++j) v[j] = c[8 * m + j];
+    for (int j = 0; j < W; ++j) v[j] = c[W * m + j];
     for (int i = m - 1; i >= 0; --i)
-      for (int j = 0; j < 8; ++j) v[j] = v[j] * s + c[8 * i + j];
+      for (int j = 0; j < W; ++j) v[j] = v[j] * s + c[W * i + j];
   } else {
-    for (int j = 0; j < 8; ++j) v[j] = c[j];
+    for (int j = 0; j < W; ++j) v[j] = c[j];
     for (int i = 1; i <= m; ++i)
-      for (int j = 0; j < 8; ++j) v[j] = v[j] * s + c[8 * i + j];
+      for (int j = 0; j < W; ++j) v[j] = v[j] * s + c[W * i + j];
   }
 }
 
 void interleaved_values(const SpaceData& space, int r, bool forward, double s, double power, double* out) {
   const std::vector<double>& c = space.interleaved[r];
   double v[8];
-  horner8(c, static_cast<int>(c.size() / 8) - 1, forward, s, v);
+  horner_side_by_side<8>(c, static_cast<int>(c.size() / 8) - 1, forward, s, v);
   for (int j = 0; j < 6; ++j) out[j] = v[j] * power;
 }
 
@@ -324,20 +369,25 @@ HornerPoint horner_point(int n, double t) {
   return h;
 }
 
-// P and P' on [0, 1] with one denominator (SpaceData::first_order_forward): the same doubles as
-// space_jet's general evaluation, from one Horner loop and one division instead of two and three.
+// P and P' on [0, 1] from one Horner loop (SpaceData::first_order_forward): the same doubles as
+// space_jet's general evaluation, with one division per denominator instead of two and three
+// loops. Width 8: one denominator; 16: separate ones.
+template <int W>
 SpaceJet first_order_jet(const SpaceData& space, double t) {
+  constexpr int slopes = W / 2;  // where the derivatives start
   const HornerPoint h = horner_point(space.degree, t);
   const double power_0 = h.powers[0], power_1 = h.powers[1];
-  double v[8];
-  horner8(h.forward ? space.first_order_forward : space.first_order_backward, space.degree, h.forward, h.s, v);
-  const double D = v[3] * power_0, D1 = v[7] * power_1;
-  const double inverse = 1 / D;
+  double v[W];
+  horner_side_by_side<W>(h.forward ? space.first_order_forward : space.first_order_backward, space.degree, h.forward,
+                         h.s, v);
   SpaceJet j{};
   for (int k = 0; k < 3; ++k) {
+    const int d = W == 8 ? 3 : 3 + k;  // the denominator's index
+    const double D = v[d] * power_0, D1 = v[slopes + d] * power_1;
+    const double inverse = 1 / D;
     const double x = (v[k] * power_0) * inverse;
     j.p[k] = x;
-    j.dp[k] = (v[4 + k] * power_1 - D1 * x) * inverse;
+    j.dp[k] = (v[slopes + k] * power_1 - D1 * x) * inverse;
   }
   return j;
 }
@@ -345,8 +395,8 @@ SpaceJet first_order_jet(const SpaceData& space, double t) {
 }  // namespace
 
 SpaceJet space_jet(const SpaceData& space, double t, int orders) {
-  if (orders <= 2 && t >= 0.0 && t <= 1.0 && !space.first_order_forward.empty()) {
-    SpaceJet j = first_order_jet(space, t);
+  if (orders <= 2 && t >= 0.0 && t <= 1.0) {
+    SpaceJet j = space.first_order_width == 8 ? first_order_jet<8>(space, t) : first_order_jet<16>(space, t);
     if (orders == 1) j.dp = {};
     return j;
   }

@@ -43,6 +43,11 @@ struct SpaceData {
   Curve curve;               // as given (validated, dimension 3)
   double diagonal = 0.0;     // of the control points' bounding box, input units
   std::array<double, 3> centre{}, a{}, b{};  // the projection: u = a . (P - centre), v = b . (P - centre)
+  // Separate denominators: a and b are two coordinate axes, axes[0] and axes[1], where the curve
+  // spreads on that coordinate plane nearly as on its principal plane (kCoordinatePlaneSpread):
+  // the projected curve keeps the curve's degree. Else {-1, -1}: the principal plane, over the
+  // product of the distinct denominators.
+  std::array<int, 2> axes{-1, -1};
   double scale = 1.0, inverse_scale = 1.0;   // normalized units: (P - centre) / scale
   double normalized_resolution = 0.0;        // the coordinates' own resolution (as PlanData's)
   int degree = 0;
@@ -53,19 +58,27 @@ struct SpaceData {
   // coefficient i (times C(m, i), m = n - r) of polynomial j = num x, y, z, den x, y, z (6, 7
   // unused): one loop over i evaluates all six side by side.
   std::array<std::vector<double>, 3> interleaved;
-  // With one denominator D for x, y, z (kinds bezier and rational_bezier): P and P' in one Horner
-  // loop. Entry i * 8 + j, i = 0..n, is coefficient i of num x, y, z, D (j = 0..3) and of their
-  // derivatives (j = 4..7, degree n - 1), padded with a zero where the derivative has no
+  // P and P' in one Horner loop, first_order_width polynomials side by side. With one denominator
+  // D for x, y, z (kinds bezier and rational_bezier), width 8: entry i * 8 + j, i = 0..n, is
+  // coefficient i of num x, y, z, D (j = 0..3) and of their derivatives (j = 4..7, degree n - 1).
+  // With separate denominators, width 16: num x, y, z, den x, y, z (j = 0..5) and their
+  // derivatives (j = 8..13; 6, 7, 14, 15 zero). A derivative is padded with a zero where it has no
   // coefficient: at i = n for the forward loop (first_order_forward), before i = 0 for the backward
   // one (first_order_backward, shifted by one). The zero enters Horner's rule as 0 * s + c = c, so
-  // every value is the same double as from interleaved[0] and interleaved[1] separately. Empty for
-  // separate denominators.
+  // every value is the same double as from interleaved[0] and interleaved[1] separately.
   std::vector<double> first_order_forward, first_order_backward;
+  int first_order_width = 8;
   std::vector<double> samples;  // P at equally spaced t in [0, 1] (16 (n + 1) + 1 of them), normalized, x y z each
 };
 
+// A curve with separate denominators is projected on a coordinate plane where both its spreads
+// there (the eigenvalues of its control points' covariance in those two coordinates) are at least
+// this fraction of its spreads on its principal plane: at most twice as thin either way.
+inline constexpr double kCoordinatePlaneSpread = 0.25;
+
 // The space data of a validated space curve; throws CurveError for one the plane engine cannot take
-// (separate denominators whose projection exceeds kMaxDegree).
+// (separate denominators, no coordinate plane spread widely enough, and a principal projection
+// whose degree exceeds kMaxDegree).
 SpaceData make_space_data(const Curve& curve);
 
 // The projected plane curve (the same kind; ids kept), whose plan inverts the projected points.

@@ -63,15 +63,18 @@ struct NewtonSettings {
   double final_step;    // a step up to this, where f' >= |P'|^2 / 2, is the last (see rational_newton)
 };
 
-// The space curve of space_check, P = (x, y, z) / D with one denominator, of degree `degree`
-// (kSpaceCheckMinDegree..kSpaceCheckMaxDegree), laid out for Horner's rule on eight polynomials
-// side by side (the engine's SpaceData::first_order_forward and first_order_backward): entry
-// i * 8 + j, i = 0..degree, is coefficient i, times C(degree, i), of x, y, z, D (j = 0..3) and,
-// times C(degree - 1, i), of their derivatives (j = 4..7; degree - 1, so one coefficient fewer:
-// `forward` has a zero at i = degree, `backward` has the derivatives shifted up by one, a zero at
-// i = 0).
+// The space curve of space_check, P = (x / D_x, y / D_y, z / D_z), of degree `degree`
+// (kSpaceCheckMinDegree..kSpaceCheckMaxDegree), laid out for Horner's rule on its polynomials and
+// their derivatives side by side (the engine's SpaceData::first_order_forward and
+// first_order_backward). With one denominator D (denominators = 1), width 8: entry i * 8 + j,
+// i = 0..degree, is coefficient i, times C(degree, i), of x, y, z, D (j = 0..3) and, times
+// C(degree - 1, i), of their derivatives (j = 4..7). With separate ones (denominators = 3), width
+// 16: x, y, z, D_x, D_y, D_z (j = 0..5) and their derivatives (j = 8..13; 6, 7, 14, 15 zero).
+// A derivative has one coefficient fewer: `forward` has a zero at i = degree, `backward` has the
+// derivatives shifted up by one, a zero at i = 0.
 struct SpaceCurve {
   int degree;
+  int denominators;  // 1 or 3
   const double* forward;
   const double* backward;
 };
