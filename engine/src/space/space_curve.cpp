@@ -369,9 +369,9 @@ HornerPoint horner_point(int n, double t) {
   return h;
 }
 
-// P and P' on [0, 1] from one Horner loop (SpaceData::first_order_forward): the same doubles as
-// space_jet's general evaluation, with one division per denominator instead of two and three
-// loops. Width 8: one denominator; 16: separate ones.
+// P and P' on [0, 1] from one Horner loop (SpaceData::first_order_forward; width 8 with one
+// denominator, 16 with separate ones): the same doubles as space_jet's general evaluation, which
+// takes a loop per derivative order.
 template <int W>
 SpaceJet first_order_jet(const SpaceData& space, double t) {
   constexpr int slopes = W / 2;  // where the derivatives start
