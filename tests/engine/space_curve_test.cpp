@@ -539,8 +539,9 @@ TEST(SpaceCurves, TheBatchedCheckGivesTheScalarChecksBits) {
           t.push_back(start), x.push_back(q[0]), y.push_back(q[1]), z.push_back(q[2]);
         }
         std::vector<double> distance(t.size());
-        implementation->space_check(detail::space_check_curve(space), t.size(), t.data(), x.data(), y.data(), z.data(),
-                                    distance.data());
+        implementation->space_check({space.degree, space.first_order_width == 8 ? 1 : 3,
+                                     space.first_order_forward.data(), space.first_order_backward.data()},
+                                    t.size(), t.data(), x.data(), y.data(), z.data(), distance.data());
         for (std::size_t l = 0; l < t.size(); ++l) {
           SCOPED_TRACE(std::string(implementation->name) + " " + to_string(kind) + " n=" + std::to_string(n) +
                        " lane " + std::to_string(l));

@@ -65,8 +65,10 @@ void check_in_space(const SpaceData& space, std::span<const Point> points, std::
   }
   distance.resize(rows.size());
   if (!rows.empty())
-    kernels::active_implementation().space_check(space_check_curve(space), rows.size(), t.data(), x.data(), y.data(),
-                                                 zs.data(), distance.data());
+    kernels::active_implementation().space_check(
+        {space.degree, space.first_order_width == 8 ? 1 : 3, space.first_order_forward.data(),
+         space.first_order_backward.data()},
+        rows.size(), t.data(), x.data(), y.data(), zs.data(), distance.data());
   std::size_t next = 0;  // the next checked row
   for (std::size_t i = 0; i < count; ++i) {
     PointResult& r = results[i];

@@ -24,7 +24,6 @@
 
 #include "bezinv/curve.hpp"
 #include "bezinv/invert.hpp"
-#include "bezinv/kernels/batch.hpp"
 
 namespace bezinv::detail {
 
@@ -110,13 +109,6 @@ SpaceRefined space_nearest(const SpaceData& space, const std::array<double, 3>& 
 inline std::array<double, 3> space_normalize(const SpaceData& space, double x, double y, double z) {
   const double s = space.inverse_scale;
   return {x * s - space.centre[0] * s, y * s - space.centre[1] * s, z * s - space.centre[2] * s};
-}
-
-// The curve as the lane-batched check takes it (Implementation::space_check): the one-loop Horner
-// layout, first_order_forward and first_order_backward.
-inline kernels::SpaceCurve space_check_curve(const SpaceData& space) {
-  return {space.degree, space.first_order_width == 8 ? 1 : 3, space.first_order_forward.data(),
-          space.first_order_backward.data()};
 }
 
 // The space answer from the plane engine's answer r (for the projected point) to the normalized
