@@ -12,7 +12,7 @@
 namespace bezinv::detail {
 namespace {
 
-struct Candidate {
+struct SpanCandidate {
   std::size_t span;
   double s, t, residual;    // span parameter, whole-curve parameter, |P - point| (input units)
   const PointResult* from;  // the span's answer it comes from
@@ -32,11 +32,11 @@ bool leaves(const PiecewiseData& curve, const std::array<double, 3>& point, std:
 
 // Two candidates on separate branches: the curve leaves the tolerance between them, and on a
 // closed curve also on the way round through its ends.
-bool separate(const PiecewiseData& curve, const std::array<double, 3>& point, const Candidate& x, const Candidate& y,
+bool separate(const PiecewiseData& curve, const std::array<double, 3>& point, const SpanCandidate& x, const SpanCandidate& y,
               double tolerance, bool closed) {
   if (x.t == y.t) return false;
-  const Candidate& lo = x.t < y.t ? x : y;
-  const Candidate& hi = x.t < y.t ? y : x;
+  const SpanCandidate& lo = x.t < y.t ? x : y;
+  const SpanCandidate& hi = x.t < y.t ? y : x;
   if (lo.span == hi.span && hi.s - lo.s <= kDistinctParameterGap) return false;
   if (!leaves(curve, point, lo.span, lo.s, hi.span, hi.s, tolerance)) return false;
   if (!closed) return true;
@@ -45,7 +45,7 @@ bool separate(const PiecewiseData& curve, const std::array<double, 3>& point, co
 }
 
 // The nearest point of span k's segment [0, 1], for a span whose answer was not on it.
-Candidate nearest_on_span(const PiecewiseData& curve, std::size_t k, const std::array<double, 3>& point,
+SpanCandidate nearest_on_span(const PiecewiseData& curve, std::size_t k, const std::array<double, 3>& point,
                           const PointResult& answer) {
   const PlanData& plan = plan_data(curve.spans[k].plan);
   double s = PointResult::nan, residual = PointResult::nan;
@@ -63,11 +63,11 @@ Candidate nearest_on_span(const PiecewiseData& curve, std::size_t k, const std::
   return {k, s, curve.parameter(k, s), residual, &answer};
 }
 
-bool nearer(const Candidate& a, const Candidate& b) {
+bool nearer(const SpanCandidate& a, const SpanCandidate& b) {
   return a.residual < b.residual || (a.residual == b.residual && a.t < b.t);
 }
 
-PointResult answer_from(const Candidate& c, Status status) {
+PointResult answer_from(const SpanCandidate& c, Status status) {
   PointResult r = *c.from;
   r.t = c.t;
   r.residual = c.residual;
@@ -84,7 +84,7 @@ PointResult whole_curve_answer(const PiecewiseData& curve, const std::array<doub
   const double tolerance = curve.tolerance(options);
   const bool closed = std::hypot(curve.first_point[0] - curve.last_point[0], curve.first_point[1] - curve.last_point[1],
                                  curve.first_point[2] - curve.last_point[2]) <= tolerance;
-  std::vector<Candidate> on_segment, beyond_ends;
+  std::vector<SpanCandidate> on_segment, beyond_ends;
   const PointResult* failed = nullptr;
   for (std::size_t k = 0; k <= last; ++k) {
     const PointResult& r = answers[k];
@@ -105,15 +105,15 @@ PointResult whole_curve_answer(const PiecewiseData& curve, const std::array<doub
   }
 
   if (!on_segment.empty()) {
-    const Candidate* best = &on_segment.front();
-    for (const Candidate& c : on_segment)
+    const SpanCandidate* best = &on_segment.front();
+    for (const SpanCandidate& c : on_segment)
       if (nearer(c, *best)) best = &c;
-    const Candidate* second = nullptr;
-    for (const Candidate& c : on_segment)
+    const SpanCandidate* second = nullptr;
+    for (const SpanCandidate& c : on_segment)
       if ((!second || nearer(c, *second)) && separate(curve, point, *best, c, tolerance, closed)) second = &c;
     if (second) {
-      const Candidate& lo = best->t < second->t ? *best : *second;
-      const Candidate& hi = best->t < second->t ? *second : *best;
+      const SpanCandidate& lo = best->t < second->t ? *best : *second;
+      const SpanCandidate& hi = best->t < second->t ? *second : *best;
       PointResult r = answer_from(lo, Status::double_point);
       r.t2 = hi.t;
       return r;
@@ -130,21 +130,21 @@ PointResult whole_curve_answer(const PiecewiseData& curve, const std::array<doub
   }
 
   if (!beyond_ends.empty()) {
-    const Candidate* best = &beyond_ends.front();
-    for (const Candidate& c : beyond_ends)
+    const SpanCandidate* best = &beyond_ends.front();
+    for (const SpanCandidate& c : beyond_ends)
       if (nearer(c, *best)) best = &c;
     return answer_from(*best, Status::outside_segment);
   }
 
   // Off the curve: the nearest of the spans' nearest points on their segments.
-  std::vector<Candidate> nearest;
+  std::vector<SpanCandidate> nearest;
   for (std::size_t k = 0; k <= last; ++k) {
     const PointResult& r = answers[k];
     if (r.status == Status::off_curve) nearest.push_back({k, r.t, curve.parameter(k, r.t), r.residual, &r});
     if (r.status == Status::outside_segment) nearest.push_back(nearest_on_span(curve, k, point, r));
   }
-  const Candidate* best = nullptr;
-  for (const Candidate& c : nearest)
+  const SpanCandidate* best = nullptr;
+  for (const SpanCandidate& c : nearest)
     if (std::isfinite(c.residual) && (!best || nearer(c, *best))) best = &c;
   if (!best) return failed ? *failed : answers.front();
   PointResult r = answer_from(*best, Status::off_curve);
