@@ -21,6 +21,7 @@
 #include "bezinv/tolerances.hpp"
 #include "common_factor.hpp"
 #include "extension.hpp"
+#include "formula/linear_inversion_formula.hpp"
 #include "isolation.hpp"
 #include "ratio_range.hpp"
 #include "stationary_points.hpp"
@@ -302,7 +303,12 @@ PlanData make_plan_data(const Curve& given) {
     plan.reason = "degenerate curve: all control points coincide";
     return plan;
   }
-
+  plan.low_degree_formula = linear_inversion_formula(plan);
+  if (plan.common_denominator) {
+    const auto [lightest, heaviest] = std::minmax_element(plan.x_den.begin(), plan.x_den.end());
+    plan.formula_weights_moderate = (*lightest > 0.0 && *heaviest <= kFormulaPathMaxWeightRatio * *lightest) ||
+                                    (*heaviest < 0.0 && *lightest >= kFormulaPathMaxWeightRatio * *heaviest);
+  }
   return plan;
 }
 

@@ -160,6 +160,13 @@ struct PlanData {
   // formula of degree 1 valid at every point, which the formula path takes before the curve's own
   // (plan.cpp, linear_direction_formula). Not usable otherwise.
   FormulaPathData linear_formula;
+  // A conic's or a cubic's (one denominator) inversion formula of degree 1, made with the plan
+  // (formula/linear_inversion_formula.hpp): Algebraic::automatic takes the formula path with it
+  // where formula_weights_moderate. Not usable at other degrees or kinds.
+  FormulaPathData low_degree_formula;
+  // The denominator's coefficients of one sign and within kFormulaPathMaxWeightRatio of each other
+  // (one denominator): where Algebraic::automatic may take low_degree_formula.
+  bool formula_weights_moderate = false;
   // max |entry| of B0, Bx, By, Bxy: a bound of B's terms before they cancel, for any point.
   std::array<double, 4> bezout_max_entries{0.0, 0.0, 0.0, 0.0};
 

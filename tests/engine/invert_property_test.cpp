@@ -53,6 +53,7 @@
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
 #include "isolation.hpp"
+#include "pipeline/formula_path.hpp"
 #include "support/sanitizers.hpp"
 
 namespace bezinv {
@@ -525,7 +526,9 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
   std::size_t double_points = 0, near_crossing = 0, near_crossing_double = 0;
   double worst_over = 0;  // sigma_next estimate / the SVD's sigma_{n-1}/sigma_1 (>= the over-estimate)
   auto compare = [&](const Case& c, const KnownPoint& k, double tolerance = kDefaultRelativeTolerance) {
-    const PointResult fast = invert_point(c.plan, k.point, {.relative_tolerance = tolerance});
+    // The Bezout fast path (the default takes the formula path on cubics: compared with this one below).
+    const PointResult fast =
+        invert_point(c.plan, k.point, {.relative_tolerance = tolerance, .algebraic = Algebraic::bezout});
     InvertOptions svd_options = svd_only;
     svd_options.relative_tolerance = tolerance;
     const PointResult svd = invert_point(c.plan, k.point, svd_options);
@@ -622,21 +625,30 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
 // The formula path (InvertOptions::algebraic = formula): the inversion formula's N/M in place of
 // B's null vector as the start, refined and certified the same way. Batched, on the same rows as
 // FastPathAgreesWithTheSvdPath: the same status as the Bezout path on every row, t (and t2) within
-// the accuracy bound, and the formula answering most on-curve rows of the degrees it covers.
+// the accuracy bound, and the formula answering most on-curve rows of the degrees it covers. The
+// default (automatic) gives the formula path's rows, bit for bit, on the plans it takes it for
+// (cubics with one denominator and moderate weights) and the Bezout path's on the others.
 TEST(InvertProperty, TheFormulaPathAnswersAsTheBezoutPath) {
-  const InvertOptions bezout_options{};
+  const InvertOptions bezout_options{.algebraic = Algebraic::bezout};
   const InvertOptions formula_options{.algebraic = Algebraic::formula};
-  std::size_t rows = 0, formula_rows = 0;
+  std::size_t rows = 0, formula_rows = 0, automatic_formula_rows = 0, cubic_rows = 0;
   auto compare = [&](const Case& c, const std::vector<KnownPoint>& known) {
     std::vector<Point> points;
     for (const KnownPoint& k : known) points.push_back(k.point);
-    std::vector<PointResult> bezout(points.size()), formula(points.size());
+    std::vector<PointResult> bezout(points.size()), formula(points.size()), automatic(points.size());
     invert(c.plan, points, bezout, bezout_options);
     invert(c.plan, points, formula, formula_options);
+    invert(c.plan, points, automatic, {});
+    const bool takes_formula = detail::takes_formula_path(detail::plan_data(c.plan), InvertOptions{});
+    const bool cubic = c.degree == 3 && c.plan.curve().kind != CurveKind::rational;
     for (std::size_t i = 0; i < points.size(); ++i) {
       const KnownPoint& k = known[i];
       ++rows;
       formula_rows += formula[i].path == Path::formula;
+      automatic_formula_rows += cubic && automatic[i].path == Path::formula;
+      cubic_rows += cubic;
+      EXPECT_TRUE(identical(automatic[i], takes_formula ? formula[i] : bezout[i]))
+          << "automatic: " << describe(c, k, automatic[i]) << "\nformula path taken: " << takes_formula;
       ASSERT_EQ(formula[i].status, bezout[i].status)
           << "formula: " << describe(c, k, formula[i]) << "\nbezout: " << describe(c, k, bezout[i]);
       if (formula[i].path != Path::formula && formula[i].path != Path::bezout_lu &&
@@ -684,8 +696,10 @@ TEST(InvertProperty, TheFormulaPathAnswersAsTheBezoutPath) {
                          datasets::with_self_intersection(kind, degree, t1, t2, rng), seed);
       compare(c, datasets::crossing_points(*c.sampling, t1, t2, 4, 0.3 * kDefaultRelativeTolerance, rng));
     }
-  std::printf("[ measured ] the formula path answered %zu of %zu rows\n", formula_rows, rows);
+  std::printf("[ measured ] the formula path answered %zu of %zu rows; by default %zu of %zu rows of cubics\n",
+              formula_rows, rows, automatic_formula_rows, cubic_rows);
   EXPECT_GT(formula_rows, rows / 5);  // not vacuous
+  EXPECT_GT(automatic_formula_rows, cubic_rows / 3);
 }
 
 // --off-curve projection changes no status and no row but off_curve ones, whose t becomes the

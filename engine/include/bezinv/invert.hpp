@@ -45,11 +45,13 @@ enum class Path : std::uint8_t {
 // it is not, near its base points). Either start is refined and certified the same way, so the
 // statuses are the same; t agrees to the accuracy bound. With the fast path (and refine); with
 // refine false, formula reports N/M itself where it can (InvertOptions::algebraic).
-// automatic (the default): the formula on a curve close to one of lower degree (a smooth
-// function's graph: kNearLowerDegreeRatio) that has a linear one (a polynomial curve linear in t
-// along a direction), where B is nearly singular twice over at every point and the null vector
-// would send most points to the SVD path; bezout on every other curve, where its lane-batched
-// kernel is the faster. With refine false, automatic is bezout.
+// automatic (the default): the formula on a conic or cubic with one denominator and weights within
+// kFormulaPathMaxWeightRatio of each other (its linear formula, made with the plan: a few
+// operations per point against B and its seed), and on a curve close to one of lower degree (a
+// smooth function's graph: kNearLowerDegreeRatio) that has a linear one (a polynomial curve linear
+// in t along a direction), where B is nearly singular twice over at every point and the null
+// vector would send most points to the SVD path; bezout on every other curve, where its
+// lane-batched kernel is the faster. With refine false, automatic is bezout.
 enum class Algebraic : std::uint8_t { bezout, formula, automatic };
 
 // "bezout", "formula" or "auto" (the command's --algebraic, Python's algebraic=); false for any

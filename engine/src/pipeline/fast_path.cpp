@@ -92,8 +92,11 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
   const double tolerance = normalized_tolerance(plan, options);
   const bool formed_b = forms_b_in_seed(plan, options);
   const kernels::Implementation& kernel = kernels::active_implementation();
-  const bool two_passes = n >= 3;
   const bool formula = takes_formula_path(plan, options);
+  // Degree 2 decides each lane with B's gap at once (the pivoted kernel gives it); a conic's
+  // formula lanes have no B, so on the formula path they take the two passes: the isolation
+  // certificate, then the gap pass for the lanes it leaves.
+  const bool two_passes = n >= 3 || formula;
   if (formula) {
     formula_or_seed(plan, points, results, count, w);
     clock.lap(&StageSeconds::kernel);

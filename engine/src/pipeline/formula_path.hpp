@@ -13,13 +13,15 @@
 namespace bezinv::detail {
 
 // The formula the formula path evaluates: the plan's linear one where it has one (a function's
-// graph: PlanData::linear_formula), else the curve's inversion formula (formula_path_data).
+// graph: PlanData::linear_formula), else a conic's or cubic's made with the plan
+// (PlanData::low_degree_formula), else the curve's inversion formula (formula_path_data).
 const FormulaPathData& fast_path_formula(const PlanData& plan);
 
-// Whether a batch of this plan takes the formula path: asked for (Algebraic::formula, or automatic
-// on a plan close to a lower degree that has a linear formula), with the fast path, from degree 3,
-// where the plan has a formula: its linear one (any degree), or the curve's, made and accurate on
-// the segment (up to kFormulaPathMaxDegree).
+// Whether a batch of this plan takes the formula path: asked for (Algebraic::formula; or automatic
+// on a conic or cubic with one denominator and moderate weights, or on a plan close to a lower
+// degree that has a linear formula), with the fast path, from degree 2, where the plan has a
+// formula: its linear one (any degree), its conic's or cubic's, or the curve's, made and accurate
+// on the segment (up to kFormulaPathMaxDegree).
 bool takes_formula_path(const PlanData& plan, const InvertOptions& options);
 
 // Whether refine is off and the formula asked for (InvertOptions::algebraic), and the plan has one:
