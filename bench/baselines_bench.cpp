@@ -149,7 +149,7 @@ const Workload& workload(int degree, int noise_exponent) {
 
 struct Agreement {
   double agree = 0, median_dt = 0, no_answer = 0;
-  double fast_path = -1;    // bezinv only: the share of rows answered by the LU fast path
+  double fast_path = -1;    // bezinv only: the share of rows answered by the fast path (bezout_lu, formula)
   double by_distance = -1;  // bezinv only: the share answered off_curve by distance alone
 };
 
@@ -207,11 +207,12 @@ const std::vector<InversionPlan>& plans(int degree) {
   return it->second;
 }
 
-void run_bezinv(benchmark::State& state, int threads, const char* label, int noise_exponent = 0) {
+void run_bezinv(benchmark::State& state, int threads, const char* label, int noise_exponent = 0,
+                Algebraic algebraic = Algebraic::automatic) {
   const int n = static_cast<int>(state.range(0));
   const Workload& w = workload(n, noise_exponent);
   const std::vector<InversionPlan>& p = plans(n);
-  const InvertOptions options{.threads = threads};
+  const InvertOptions options{.threads = threads, .algebraic = algebraic};
   std::vector<PointResult> results(kPointsPerCurve);
   int c = 0;
   for (auto _ : state) {
@@ -228,7 +229,7 @@ void run_bezinv(benchmark::State& state, int threads, const char* label, int noi
       invert(p[curve], w.points[curve], results, options);
       for (const PointResult& r : results) {
         t[curve].push_back(r.t);
-        fast += r.path == Path::bezout_lu;
+        fast += r.path == Path::bezout_lu || r.path == Path::formula;
         by_distance += r.path == Path::nearest && std::isnan(r.sigma_min);
       }
     }
@@ -240,6 +241,11 @@ void run_bezinv(benchmark::State& state, int threads, const char* label, int noi
 }
 
 void BM_Bezinv_refined(benchmark::State& state) { run_bezinv(state, 1, "bezinv"); }
+// The Bezout path on every curve (--algebraic bezout): what the default ran on conics and cubics
+// before it took their inversion formula; beside the default, in the same run.
+void BM_Bezinv_refined_bezout(benchmark::State& state) {
+  run_bezinv(state, 1, "bezinv_bezout", 0, Algebraic::bezout);
+}
 // Two threads: wall-clock time (UseRealTime at registration), so items_per_second is the throughput.
 void BM_Bezinv_refined_2threads(benchmark::State& state) { run_bezinv(state, 2, "bezinv"); }
 // Off the curve (range(1): the noise exponent, workload(degree, noise_exponent)), one thread.
@@ -396,6 +402,10 @@ const bool registered = [] {
       benchmark::RegisterBenchmark("BM_Eigen_SelfAdjoint_per_point", BM_Eigen_SelfAdjoint_per_point)->Arg(n)->Unit(benchmark::kMicrosecond);
     }
     benchmark::RegisterBenchmark("BM_Bezinv_refined", BM_Bezinv_refined)->Arg(n)->Unit(benchmark::kMicrosecond);
+    if (n <= 3)
+      benchmark::RegisterBenchmark("BM_Bezinv_refined_bezout", BM_Bezinv_refined_bezout)
+          ->Arg(n)
+          ->Unit(benchmark::kMicrosecond);
     benchmark::RegisterBenchmark("BM_Bezinv_refined_2threads", BM_Bezinv_refined_2threads)
         ->Arg(n)
         ->UseRealTime()
