@@ -46,10 +46,10 @@ const FormulaPathData& fast_path_formula(const PlanData& plan) {
 }
 
 bool takes_formula_path(const PlanData& plan, const InvertOptions& options) {
-  // automatic: the formulae made with the plan only, where they are the faster (a cubic's N / M,
-  // a few operations, against its 3 x 3 B and seed; docs/inversion-formula.md, "Speed"); the
-  // curve's own is made per plan on first use (up to ~80 ms at degree 20), which a file of many
-  // curves would pay for each.
+  // automatic: the formulae made with the plan only, where they are the faster (a conic's or
+  // cubic's N / M, a few operations, against its B and seed; docs/inversion-formula.md, "Where
+  // the default takes it: conics and cubics"); the curve's own is made per plan on first use (up
+  // to ~80 ms at degree 20), which a file of many curves would pay for each.
   const bool automatic = (plan.near_lower_degree && plan.linear_formula.usable) ||
                          (plan.degree <= 3 && plan.low_degree_formula.usable && plan.formula_weights_moderate);
   const bool asked = options.algebraic == Algebraic::formula ||
