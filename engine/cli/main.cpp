@@ -289,7 +289,8 @@ int main(int argc, char** argv) {
   invert->add_option("--algebraic", invert_arguments.algebraic,
                      "The fast path's algebraic step: bezout (B's null vector), formula (the curve's inversion "
                      "formula N/M where it is valid, path formula; with --no-refine, N/M itself) or auto (formula "
-                     "on a curve close to a lower degree, such as a smooth function's graph; bezout elsewhere)")
+                     "on conics and cubics of one denominator and moderate weights, and on a curve close to a "
+                     "lower degree, such as a smooth function's graph; bezout elsewhere)")
       ->check(CLI::IsMember(kAlgebraicNames))
       ->capture_default_str();
   std::string invert_rows;
