@@ -497,5 +497,69 @@ TEST(OrdinaryCurves, MonotoneWeightsOverTwentyFourDecades) {
   EXPECT_GT(findings.points(), 150);
 }
 
+// The conics and cubics people draw, which the default now inverts from their inversion formula
+// (engine/src/formula/linear_inversion_formula.hpp): CSS easing cubics, font outlines in integer
+// units of a 2048 em (TrueType quadratics, CFF cubics), circular arcs as rational quadratics, and
+// cubics in map coordinates (degrees of longitude and latitude, 1e-3 across). Points made exactly
+// from a known t meet the accuracy model; points moved off the curve by 1e-9 .. 1 of its size get
+// the Bezout path's status; and the formula answers most on-curve points.
+TEST(OrdinaryCurves, ConicsAndCubicsPeopleDrawTakeTheFormulaWithTheBezoutPathsStatuses) {
+  Findings findings("conics and cubics people draw, by default");
+  int on_curve = 0, by_formula = 0, compared = 0;
+  std::mt19937_64 rng(20261204);
+  auto check = [&](const std::string& name, const Curve& curve) {
+    const ExactCurve exact(curve);
+    const InversionPlan plan = make_plan(curve);
+    ASSERT_TRUE(plan.usable()) << name;
+    std::vector<Point> points;
+    for (double t : probe_parameters(rng, 12)) {
+      const KnownParameter k = known_at(exact, t);
+      const PointResult r = invert_point(plan, k.point);
+      expect_known(findings, name, exact, k, r);
+      ++on_curve;
+      by_formula += r.path == Path::formula;
+      points.push_back(k.point);
+    }
+    for (double offset : {1e-9, 1e-6, 1e-3, 1.0}) {
+      const Point p = known_at(exact, datasets::uniform(rng, 0.0, 1.0)).point;
+      const double angle = datasets::uniform(rng, 0.0, 2 * std::numbers::pi);
+      const double r = offset * plan.diagonal();
+      points.push_back({p.x + r * std::cos(angle), p.y + r * std::sin(angle)});
+    }
+    std::vector<PointResult> automatic(points.size()), bezout(points.size());
+    invert(plan, points, automatic);
+    invert(plan, points, bezout, {.algebraic = Algebraic::bezout});
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      ++compared;
+      EXPECT_EQ(automatic[i].status, bezout[i].status) << name << ", point " << i;
+    }
+  };
+  for (int c = 0; c < 20; ++c) {
+    const double x1 = datasets::uniform(rng, 0.0, 1.0), x2 = datasets::uniform(rng, 0.0, 1.0);
+    check("easing " + std::to_string(c),
+          Curve::bezier("easing", {{0, 0}, {x1, datasets::uniform(rng, -0.5, 1.5)}, {x2, datasets::uniform(rng, -0.5, 1.5)}, {1, 1}}));
+    Points glyph;
+    const double x0 = std::round(datasets::uniform(rng, 0.0, 2048.0)), y0 = std::round(datasets::uniform(rng, 0.0, 2048.0));
+    for (int i = 0; i <= 2 + c % 2; ++i)
+      glyph.push_back({x0 + std::round(datasets::uniform(rng, -400.0, 400.0)), y0 + std::round(datasets::uniform(rng, -400.0, 400.0))});
+    check("glyph " + std::to_string(c), Curve::bezier("glyph", glyph));
+    // An arc of angle 2 a on the unit circle: end points at +-a, the middle control point where
+    // their tangents meet, its weight cos(a).
+    const double a = datasets::uniform(rng, 0.1, 1.5);
+    check("arc " + std::to_string(c),
+          Curve::rational_bezier("arc", {{std::cos(a), -std::sin(a)}, {1 / std::cos(a), 0}, {std::cos(a), std::sin(a)}},
+                                 {1, std::cos(a), 1}));
+    const double lon = datasets::uniform(rng, -180.0, 180.0), lat = datasets::uniform(rng, -80.0, 80.0);
+    Points track;
+    for (int i = 0; i <= 3; ++i)
+      track.push_back({lon + datasets::uniform(rng, -5e-4, 5e-4), lat + datasets::uniform(rng, -5e-4, 5e-4)});
+    check("map " + std::to_string(c), Curve::rational_bezier("map", track, {1, datasets::uniform(rng, 0.5, 2.0),
+                                                                            datasets::uniform(rng, 0.5, 2.0), 1}));
+  }
+  std::printf("[ measured ] %d on-curve points, %d by the formula; %d statuses compared with the Bezout path\n", on_curve,
+              by_formula, compared);
+  EXPECT_GT(by_formula, on_curve / 2);
+}
+
 }  // namespace
 }  // namespace bezinv
