@@ -156,14 +156,14 @@ inline constexpr double kFormulaPathMaxCoordinate = 1e6;
 // separate denominators): the formula costs ~10 us to make at degree 3, ~80 ms at 20 (per plan,
 // once), and more above.
 inline constexpr int kFormulaPathMaxDegree = 20;
-// Algebraic::automatic takes a cubic's linear formula only where its weights (the denominator's
-// coefficients) are of one sign and within this ratio of each other. Beyond, the parametrization's
-// speed varies by as much: near an end of tiny weight a few ulps of t are far apart in space, and
-// N/M, accurate in t to the ulps of its terms, starts Newton farther than its stopping rule (steps
-// of 4 eps in t) lets it come back; the null vector's ratio read-out keeps t's relative accuracy
-// there. Measured on cubics with a first weight 1e-12 .. 1e12 (tests/engine/
-// cusps_and_slow_branches_test.cpp): residuals up to 1e9 times the accuracy bound at a ratio of
-// 1e12, 4 times at 1e8, none above it at 1e4.
+// Algebraic::automatic takes a conic's or cubic's linear formula only where its weights (the
+// denominator's coefficients) are of one sign and within this ratio of each other. Beyond, the
+// parametrization's speed varies by as much: near an end of tiny weight a few ulps of t are far
+// apart in space, and N/M, accurate in t to the ulps of its terms, starts Newton farther than its
+// stopping rule (steps of 4 eps in t) lets it come back; the null vector's ratio read-out keeps
+// t's relative accuracy there. Measured on cubics with a first weight 1e-12 .. 1e12
+// (tests/engine/cusps_and_slow_branches_test.cpp): residuals up to 3e8 times the accuracy bound
+// at a ratio of 1e12, 4 times at 1e8, none above it at 1e4.
 inline constexpr double kFormulaPathMaxWeightRatio = 1e3;
 // A curve close to one of degree n - 1 (each of its polynomials' top power coefficient below this
 // times power_leading_bound: a smooth function's graph, whose x(t) is linear and y(t)'s top
