@@ -51,7 +51,7 @@ bool takes_formula_path(const PlanData& plan, const InvertOptions& options) {
   // the default takes it: conics and cubics"); the curve's own is made per plan on first use (up
   // to ~80 ms at degree 20), which a file of many curves would pay for each.
   const bool automatic = (plan.near_lower_degree && plan.linear_formula.usable) ||
-                         (plan.degree <= 3 && plan.low_degree_formula.usable && plan.formula_weights_moderate);
+                         (plan.low_degree_formula.usable && plan.formula_weights_moderate);
   const bool asked = options.algebraic == Algebraic::formula ||
                      (options.algebraic == Algebraic::automatic && automatic);
   return asked && takes_fast_path(plan, options) && plan.degree >= 2 && fast_path_formula(plan).usable;
@@ -100,42 +100,16 @@ double formula_parameter(const FormulaPathData& f, double u, double v) {
   return numerator / denominator;
 }
 
-namespace {
-
-// formula_parameter of a degree-1 formula for lanes [0, count), the same operations in the same
-// order, written without branches so that the loop runs in vectors: N/M where valid, else NaN.
-void linear_formula_parameters(const FormulaPathData& f, const double* u, const double* v, std::size_t count,
-                               double* t) {
-  const double n0 = f.n[0], n1 = f.n[1], n2 = f.n[2], m0 = f.m[0], m1 = f.m[1], m2 = f.m[2];
-  const double cu = f.centre_u, cv = f.centre_v, su = f.inverse_half_u, sv = f.inverse_half_v;
-  for (std::size_t l = 0; l < count; ++l) {
-    const bool near = std::abs(u[l]) <= kFormulaPathMaxCoordinate && std::abs(v[l]) <= kFormulaPathMaxCoordinate;
-    const double a = (u[l] - cu) * su, b = (v[l] - cv) * sv;
-    const double numerator = n0 + n1 * a + n2 * b;
-    const double denominator = m0 + m1 * a + m2 * b;
-    const double size = std::abs(m0) + std::abs(m1 * a) + std::abs(m2 * b);
-    const bool valid = near && std::abs(denominator) >= kFormulaPathMinDenominator * size;
-    t[l] = valid ? numerator / denominator : PointResult::nan;
-  }
-}
-
-}  // namespace
-
 void formula_or_seed(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                      BatchWorkspace& w) {
   const FormulaPathData& f = fast_path_formula(plan);
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
-  std::array<double, kBatchLanes> by_formula;
-  if (f.degree == 1)
-    linear_formula_parameters(f, w.u.data(), w.v.data(), count, by_formula.data());
-  else
-    for (std::size_t l = 0; l < count; ++l) by_formula[l] = w.active[l] ? formula_parameter(f, w.u[l], w.v[l]) : 0.0;
   std::size_t seeded = 0;
   for (std::size_t l = 0; l < count; ++l) {
     w.from_formula[l] = 0;
     if (!w.active[l]) continue;  // the fast path leaves an inactive lane alone
-    const double t = by_formula[l];
+    const double t = formula_parameter(f, w.u[l], w.v[l]);
     if (std::isfinite(t)) {
       w.t_algebraic[l] = t;
       w.defect[l] = 0.0;
