@@ -221,6 +221,7 @@ void isolation_pieces(PlanData& plan) {
   plan.isolation_far.clear();
   plan.isolation_monotone.clear();
   plan.isolation_unique.clear();
+  plan.isolation_groups.clear();
   const int n = plan.degree;
   if (n < 2) return;
   const int K = isolation_piece_count(n);
@@ -270,6 +271,27 @@ void isolation_pieces(PlanData& plan) {
     }
     plan.isolation_far[j] = std::sqrt(nearest2);
   }
+
+  // The groups' boxes, widened as the pieces' own (kIsolationMargin) for the rounding of their
+  // ends: a point they clear is cleared by every box of the group.
+  static_assert(32 % kIsolationGroup == 0 && kIsolationMaxPieces % kIsolationGroup == 0);
+  plan.isolation_groups.assign(4 * (K / kIsolationGroup), 0.0);
+  for (int g = 0; g < K / kIsolationGroup; ++g) {
+    double box[4] = {inf, -inf, inf, -inf};
+    bool whole_plane = false;  // a box with a NaN in it (never certifies): the group's too
+    for (int q = g * kIsolationGroup; q < (g + 1) * kIsolationGroup; ++q) {
+      const double lo_x = x_centre[q] - x_half[q], hi_x = x_centre[q] + x_half[q];
+      const double lo_y = y_centre[q] - y_half[q], hi_y = y_centre[q] + y_half[q];
+      whole_plane = whole_plane || std::isnan(lo_x + hi_x + lo_y + hi_y);
+      box[0] = std::min(box[0], lo_x), box[1] = std::max(box[1], hi_x);
+      box[2] = std::min(box[2], lo_y), box[3] = std::max(box[3], hi_y);
+    }
+    if (whole_plane) box[0] = box[2] = -inf, box[1] = box[3] = inf;
+    for (int k = 0; k < 4; ++k) {
+      const double outward = (k % 2 == 0 ? -1.0 : 1.0) * kIsolationMargin * std::abs(box[k]);
+      plan.isolation_groups[4 * g + k] = box[k] + outward;
+    }
+  }
 }
 
 namespace {
@@ -309,14 +331,16 @@ bool isolated(const PlanData& plan, double u0, double v0, double t, double dista
   if (!isolated_around(plan, j, distance)) return false;
   const double limit = isolation_limit(tolerance);
   if (plan.isolation_far[j] - distance > limit) return true;
-  // Otherwise P0 itself against every box not next to t's: all farther than the tolerance.
-  // All K distances first, then one test over them: the loop vectorizes. (A NaN point is inside
-  // every box: never certified.)
-  std::array<double, kIsolationMaxPieces> distance2;
-  for (int q = 0; q < K; ++q) distance2[q] = isolation_box_distance2(plan, q, u0, v0);
+  // Otherwise P0 itself against every box not next to t's: all farther than the tolerance. A
+  // group's box holds the boxes of its pieces, so a group farther than that is done with; the
+  // pieces of the few others one by one. (A NaN point is inside every box: never certified.)
   const double limit2 = limit * limit;
-  for (int q = 0; q < K; ++q)
-    if (!(distance2[q] > limit2) && (q < j - 1 || q > j + 1)) return false;
+  const double* groups = plan.isolation_groups.data();
+  for (int g = 0; g < K / kIsolationGroup; ++g) {
+    if (box_distance2(groups + 4 * g, u0, v0) > limit2) continue;
+    for (int q = g * kIsolationGroup; q < (g + 1) * kIsolationGroup; ++q)
+      if (!(isolation_box_distance2(plan, q, u0, v0) > limit2) && (q < j - 1 || q > j + 1)) return false;
+  }
   return true;
 }
 

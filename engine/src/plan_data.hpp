@@ -182,10 +182,12 @@ struct PlanData {
   // box holding each piece of the curve (K x centres, K x half-widths, then the same for y; the
   // whole plane where a weight is not positive), the distance from each box to the nearest box not
   // next to it, and per piece a bound that makes the curve monotone around it and the distance
-  // from the curve below which a point has one nearest parameter there (0: none). Empty for
+  // from the curve below which a point has one nearest parameter there (0: none); and per group of
+  // kIsolationGroup consecutive pieces the box around their boxes (x min, x max, y min, y max,
+  // widened by kIsolationMargin), which clears the whole group with one comparison. Empty for
   // degree < 2.
   int isolation_pieces = 0;
-  std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique;
+  std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique, isolation_groups;
 
   // What only answers off the curve use, built by the first point that asks (off_curve_data).
   Lazy<OffCurveData> off_curve;

@@ -101,9 +101,53 @@ TEST(Isolation, EveryPieceOfTheCurveLiesInItsBox) {
           EXPECT_GE(p[1], box[2]) << "n " << n << " t " << t;
           EXPECT_LE(p[1], box[3]) << "n " << n << " t " << t;
         }
+        // The group's box holds the piece's, so a point it clears is clear of the piece.
+        const double* group = plan.isolation_groups.data() + 4 * (j / detail::kIsolationGroup);
+        EXPECT_LE(group[0], box[0]) << "n " << n << " piece " << j;
+        EXPECT_GE(group[1], box[1]) << "n " << n << " piece " << j;
+        EXPECT_LE(group[2], box[2]) << "n " << n << " piece " << j;
+        EXPECT_GE(group[3], box[3]) << "n " << n << " piece " << j;
       }
+      ASSERT_EQ(plan.isolation_groups.size(), 4u * (K / detail::kIsolationGroup));
   });
   RecordProperty("boxes", boxes);
+}
+
+// isolated() looks at the pieces of the groups near the point only: it certifies exactly what the
+// definition does, every box not next to t's farther than the tolerance (after the tests around
+// t, which both share), on points near the curve, where groups are near, and far from it.
+TEST(Isolation, TheGroupsChangeNothingIsolatedCertifies) {
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int certified = 0, refused = 0;
+  for_each_random_plan(rng, 2, 20, [&](int, const detail::PlanData& plan) {
+    const int K = plan.isolation_pieces;
+    const double* b = plan.isolation_boxes.data();
+    for (int i = 0; i < 200; ++i) {
+      const double t = unit(rng);
+      const auto p = plan.normalized_point(t);
+      const double angle = 6.283185307179586 * unit(rng), off = std::pow(10.0, -8 + 7 * unit(rng));
+      const double u0 = p[0] + off * std::cos(angle), v0 = p[1] + off * std::sin(angle);
+      const double distance = std::hypot(u0 - p[0], v0 - p[1]);
+      const double tolerance = std::pow(10.0, -7 + 6 * unit(rng));
+      const int j = std::min(K - 1, static_cast<int>(t * K));
+      bool expected = distance < plan.isolation_monotone[j] * kDistinctParameterGap || distance < plan.isolation_unique[j];
+      const double limit = tolerance * (1 + kIsolationMargin);
+      for (int q = 0; q < K && expected; ++q) {
+        if (q >= j - 1 && q <= j + 1) continue;
+        const double dx = std::max(std::abs(u0 - b[q]) - b[K + q], 0.0);
+        const double dy = std::max(std::abs(v0 - b[2 * K + q]) - b[3 * K + q], 0.0);
+        expected = dx * dx + dy * dy > limit * limit;
+      }
+      const bool got = detail::isolated(plan, u0, v0, t, distance, tolerance);
+      EXPECT_EQ(got, expected) << "t " << t << " off " << off << " tolerance " << tolerance;
+      (got ? certified : refused) += 1;
+    }
+  });
+  EXPECT_GT(certified, 1000);
+  EXPECT_GT(refused, 1000);
+  RecordProperty("certified", certified);
+  RecordProperty("refused", refused);
 }
 
 // The bound m of piece j says: for t, tau in pieces j-1..j+1,
