@@ -1,8 +1,9 @@
 // The lane-batched nearest-point Newton (Implementation::rational_newton), every available
-// implementation, degrees 1..24, batch sizes around the vector widths. Expected parameters come
-// from construction: points made exactly (GMP) at a known t, on the curve, along its normal, or
-// past an end along its tangent. tests/engine/refine_test.cpp checks it against the engine's
-// scalar refinement bit for bit.
+// implementation, degrees 1..24, batch sizes around the vector widths, with its jets by de
+// Casteljau and by Horner's rule (RationalCurve::horner) in turn. Expected parameters come from
+// construction: points made exactly (GMP) at a known t, on the curve, along its normal, or past an
+// end along its tangent. tests/engine/refine_test.cpp checks the de Casteljau jets against the
+// engine's scalar refinement bit for bit; the Horner jets give every implementation the same bits.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,8 +30,30 @@ constexpr NewtonSettings kSettings{60, 0.125, 1e-6, 40, 1e-12};
 struct TestCurve {
   std::vector<double> x_num, x_den, y_num, y_den;
   exact::RationalCurve exact;
-  RationalCurve view() const { return {static_cast<int>(x_num.size()) - 1, x_num.data(), x_den.data(), y_num.data(), y_den.data()}; }
+  std::vector<double> horner;  // batch.hpp's layout, filled by random_curve
+  RationalCurve view(bool by_horner = false) const {
+    return {static_cast<int>(x_num.size()) - 1, x_num.data(), x_den.data(), y_num.data(), y_den.data(),
+            by_horner ? horner.data() : nullptr};
+  }
 };
+
+// Per polynomial, the Bernstein coefficients of its value, first and second derivative (degree n,
+// n - 1, n - 2: forward differences times n, n (n - 1)), each times its binomial C(m, i).
+std::vector<double> horner_layout(int n, const std::vector<const std::vector<double>*>& polynomials) {
+  const auto binomial = [](int m, int i) {
+    double b = 1;
+    for (int k = 1; k <= i; ++k) b = b * (m - i + k) / k;
+    return b;
+  };
+  std::vector<double> out;
+  for (const std::vector<double>* c : polynomials) {
+    const std::vector<double>& p = *c;
+    for (int i = 0; i <= n; ++i) out.push_back(p[i] * binomial(n, i));
+    for (int i = 0; i < n; ++i) out.push_back(n * (p[i + 1] - p[i]) * binomial(n - 1, i));
+    for (int i = 0; i + 1 < n; ++i) out.push_back(n * (n - 1.0) * (p[i + 2] - 2 * p[i + 1] + p[i]) * binomial(n - 2, i));
+  }
+  return out;
+}
 
 TestCurve random_curve(int n, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0), weight(0.5, 2.0);
@@ -42,6 +65,7 @@ TestCurve random_curve(int n, std::mt19937_64& rng) {
     c.x_den.push_back(w);
   }
   c.y_den = c.x_den;
+  c.horner = horner_layout(n, {&c.x_num, &c.x_den, &c.y_num, &c.y_den});
   c.exact = {exact::to_exact(c.x_num), exact::to_exact(c.x_den), exact::to_exact(c.y_num), exact::to_exact(c.y_den)};
   return c;
 }
@@ -64,8 +88,9 @@ struct Lanes {
     t.push_back(t0);
     distance.push_back(-1.0);  // overwritten by every lane
   }
-  void run(const Implementation& implementation, const TestCurve& c) {
-    implementation.rational_newton(c.view(), kSettings, t.size(), u.data(), v.data(), t.data(), distance.data());
+  void run(const Implementation& implementation, const TestCurve& c, bool by_horner) {
+    implementation.rational_newton(c.view(by_horner), kSettings, t.size(), u.data(), v.data(), t.data(),
+                                   distance.data());
   }
 };
 
@@ -74,6 +99,7 @@ struct Lanes {
 // distance at rounding level. Bound: the rounded point moves the nearest parameter by
 // ~eps / |P'|, and speeds here are >= ~0.05, so 1e-13 has room; measured worst 5e-15.
 TEST(RationalNewton, OnCurvePointsFromNearbyStarts) {
+  for (const bool by_horner : {false, true})
   for (const Implementation* implementation : available_implementations()) {
     std::mt19937_64 rng(20261128);
     double worst_t = 0, worst_distance = 0;
@@ -90,9 +116,10 @@ TEST(RationalNewton, OnCurvePointsFromNearbyStarts) {
         lanes.add(p.x, p.y, t_true + offset);
         truth.push_back(t_true);
       }
-      lanes.run(*implementation, c);
+      lanes.run(*implementation, c, by_horner);
       for (std::size_t l = 0; l < truth.size(); ++l) {
-        SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " lane " + std::to_string(l));
+        SCOPED_TRACE(std::string(implementation->name) + (by_horner ? " Horner" : "") + " n=" + std::to_string(n) +
+                   " lane " + std::to_string(l));
         ASSERT_FALSE(std::isnan(lanes.distance[l]));
         EXPECT_NEAR(lanes.t[l], truth[l], 1e-13);
         EXPECT_LE(lanes.distance[l], 1e-14);
@@ -100,14 +127,15 @@ TEST(RationalNewton, OnCurvePointsFromNearbyStarts) {
         worst_distance = std::max(worst_distance, lanes.distance[l]);
       }
     }
-    std::printf("%s: worst |t - t_true| %s, worst distance %s\n", std::string(implementation->name).c_str(),
-                sci(worst_t).c_str(), sci(worst_distance).c_str());
+    std::printf("%s%s: worst |t - t_true| %s, worst distance %s\n", std::string(implementation->name).c_str(),
+                by_horner ? " Horner" : "", sci(worst_t).c_str(), sci(worst_distance).c_str());
   }
 }
 
 // Points off the curve along its normal at t_star: P(t_star) + delta N, with delta below half the
 // radius of curvature, so t_star is the nearest parameter nearby and the distance is |delta|.
 TEST(RationalNewton, OffCurvePointsAlongTheNormal) {
+  for (const bool by_horner : {false, true})
   for (const Implementation* implementation : available_implementations()) {
     std::mt19937_64 rng(7);
     int checked = 0;
@@ -131,9 +159,10 @@ TEST(RationalNewton, OffCurvePointsAlongTheNormal) {
         truth.push_back(t_star);
         offset.push_back(std::abs(delta));
       }
-      lanes.run(*implementation, c);
+      lanes.run(*implementation, c, by_horner);
       for (std::size_t l = 0; l < truth.size(); ++l) {
-        SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " lane " + std::to_string(l));
+        SCOPED_TRACE(std::string(implementation->name) + (by_horner ? " Horner" : "") + " n=" + std::to_string(n) +
+                   " lane " + std::to_string(l));
         ASSERT_FALSE(std::isnan(lanes.distance[l]));
         // Off the curve f(t) = 0 still pins t to ~eps / (|P'|^2 (1 - delta kappa)); the point's own
         // rounding (~1e-16) moves t_star by as much.
@@ -149,6 +178,7 @@ TEST(RationalNewton, OffCurvePointsAlongTheNormal) {
 // A point past the end t = 1 along the tangent there: the nearest point of the segment is the end
 // itself, and the iteration must stop there exactly (clamped), at distance |delta|.
 TEST(RationalNewton, ClampsAtTheEndsOfTheSegment) {
+  for (const bool by_horner : {false, true})
   for (const Implementation* implementation : available_implementations()) {
     std::mt19937_64 rng(11);
     for (int n = 2; n <= 12; ++n) {
@@ -159,8 +189,8 @@ TEST(RationalNewton, ClampsAtTheEndsOfTheSegment) {
         const double speed = std::hypot(p.dx, p.dy), sign = end == 1.0 ? 1.0 : -1.0, delta = 1e-3;
         lanes.add(p.x + sign * delta * p.dx / speed, p.y + sign * delta * p.dy / speed, end == 1.0 ? 1.0 - 1e-3 : 1e-3);
       }
-      lanes.run(*implementation, c);
-      SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n));
+      lanes.run(*implementation, c, by_horner);
+      SCOPED_TRACE(std::string(implementation->name) + (by_horner ? " Horner" : "") + " n=" + std::to_string(n));
       EXPECT_EQ(lanes.t[0], 0.0);
       EXPECT_EQ(lanes.t[1], 1.0);
       EXPECT_NEAR(lanes.distance[0], 1e-3, 1e-14);
@@ -172,6 +202,7 @@ TEST(RationalNewton, ClampsAtTheEndsOfTheSegment) {
 // Starts the kernel does not take (NaN, outside [0, 1], infinite) come back as given, with distance
 // NaN; lanes around them are settled as usual; count 0 touches nothing.
 TEST(RationalNewton, LeavesUnusableStartsToTheCaller) {
+  for (const bool by_horner : {false, true})
   for (const Implementation* implementation : available_implementations()) {
     std::mt19937_64 rng(3);
     const TestCurve c = random_curve(5, rng);
@@ -184,8 +215,8 @@ TEST(RationalNewton, LeavesUnusableStartsToTheCaller) {
       lanes.add(p.x, p.y, s);
       truth.push_back(t_true);
     }
-    lanes.run(*implementation, c);
-    SCOPED_TRACE(std::string(implementation->name));
+    lanes.run(*implementation, c, by_horner);
+    SCOPED_TRACE(std::string(implementation->name) + (by_horner ? " Horner" : ""));
     for (std::size_t l = 0; l < truth.size(); ++l) {
       const bool usable = std::isfinite(starts[l]) && starts[l] >= 0 && starts[l] <= 1;
       if (usable) {
@@ -197,9 +228,45 @@ TEST(RationalNewton, LeavesUnusableStartsToTheCaller) {
       }
     }
     double t = 0.5, distance = 7.0;
-    implementation->rational_newton(c.view(), kSettings, 0, &t, &t, &t, &distance);
+    implementation->rational_newton(c.view(by_horner), kSettings, 0, &t, &t, &t, &distance);
     EXPECT_EQ(t, 0.5);
     EXPECT_EQ(distance, 7.0);
+  }
+}
+
+// With Horner's jets no implementation has the scalar code's bits to match, but all of them give
+// the same bits (no fused multiply-add, the same operations in the same order per lane), whatever
+// the lane's group: off-curve points from starts a sampling search would give.
+TEST(RationalNewton, HornerJetsGiveEveryImplementationTheSameBits) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int compared = 0;
+  for (int n = 1; n <= 24; ++n) {
+    const TestCurve c = random_curve(n, rng);
+    Lanes given;
+    for (int k = 0; k < 37; ++k) {
+      const Exact p = at(c, unit(rng));
+      const double off = 0.05 * (unit(rng) - 0.5);
+      given.add(p.x + off, p.y - off, unit(rng));
+    }
+    std::vector<double> t0, distance0;
+    for (const Implementation* implementation : available_implementations()) {
+      Lanes lanes = given;
+      lanes.run(*implementation, c, /*by_horner=*/true);
+      if (t0.empty()) {
+        t0 = lanes.t, distance0 = lanes.distance;
+        continue;
+      }
+      SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n));
+      for (std::size_t l = 0; l < t0.size(); ++l) {
+        EXPECT_TRUE(test_support::same_bits(lanes.t[l], t0[l])) << l;
+        EXPECT_TRUE(test_support::same_bits(lanes.distance[l], distance0[l])) << l;
+        ++compared;
+      }
+    }
+  }
+  if (available_implementations().size() > 1) {
+    EXPECT_GT(compared, 0);
   }
 }
 

@@ -78,11 +78,16 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
   }
   if (m == 0) return clock.lap(&StageSeconds::off_curve);
 
-  // 2. Newton from the starts, lane-batched (refine_parameter's numbers).
-  if (m > newton_from)
-    kernels::active_implementation().rational_newton(kernel_curve(plan), kNewtonSettings, m - newton_from,
-                                                     u.data() + newton_from, v.data() + newton_from,
-                                                     t.data() + newton_from, distance.data() + newton_from);
+  // 2. Newton from the starts, lane-batched: refine_parameter's steps on jets by Horner's rule
+  //    (O(n) where its de Casteljau is O(n^2)). Their bits need not be the scalar code's: the
+  //    answer is what the proofs below make of it.
+  if (m > newton_from) {
+    kernels::RationalCurve curve = kernel_curve(plan);
+    curve.horner = plan.horner.data();
+    kernels::active_implementation().rational_newton(curve, kNewtonSettings, m - newton_from, u.data() + newton_from,
+                                                     v.data() + newton_from, t.data() + newton_from,
+                                                     distance.data() + newton_from);
+  }
 
   // 3. Per lane, the proofs: the refined start as the certified search's hint (usually the
   //    nearest point already: the isolation certificate proves it at once near one branch, the

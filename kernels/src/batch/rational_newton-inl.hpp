@@ -7,7 +7,9 @@
 // (engine/src/refine.cpp: de Casteljau on the four polynomials, the jet read off the last three
 // points, the Newton step of f(t) = (P(t) - P0) . P'(t)). No fused multiply-add is used and the
 // file is compiled with -ffp-contract=off, so a lane settled here has the very bits the scalar
-// code would have produced from the same start, on every instruction set.
+// code would have produced from the same start, on every instruction set. With the curve's
+// Horner coefficients (RationalCurve::horner) the same iterations run on jets by Horner's rule
+// (HornerCurve): O(n) a jet, other bits than the scalar code's, the same on every instruction set.
 #if defined(BEZINV_KERNELS_BATCH_RATIONAL_NEWTON_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef BEZINV_KERNELS_BATCH_RATIONAL_NEWTON_INL_H_
 #undef BEZINV_KERNELS_BATCH_RATIONAL_NEWTON_INL_H_
@@ -129,6 +131,108 @@ HWY_INLINE hn::Vec<D> point_distance(D d, const RationalCurve& curve, hn::Vec<D>
   return plain_length(hn::Sub(hn::Div(a[0], b[0]), u), hn::Sub(hn::Div(c[0], e[0]), v), plain);
 }
 
+// The curve as the Newton iterations below see it: its jet (P, P', P'') at t, and |P(t) - P0|.
+// By de Casteljau, the scalar refinement's operations (degree N at compile time):
+template <int N>
+struct CasteljauCurve {
+  const RationalCurve& curve;
+
+  template <class D, class V = hn::Vec<D>>
+  HWY_INLINE void jet(D d, const V& t, V& x, V& dx, V& ddx, V& y, V& dy, V& ddy) const {
+    // The last three points of N - 2 de Casteljau steps (the two coefficients at N = 1, and 0).
+    constexpr int kSteps = N >= 2 ? N - 2 : 0, kLeft = N >= 2 ? 3 : 2;
+    const V zero = hn::Zero(d);
+    V a[3] = {zero, zero, zero}, b[3] = {zero, zero, zero}, c[3] = {zero, zero, zero}, e[3] = {zero, zero, zero};
+    de_casteljau<N, kSteps, kLeft>(d, curve.x_num, t, a);
+    de_casteljau<N, kSteps, kLeft>(d, curve.x_den, t, b);
+    de_casteljau<N, kSteps, kLeft>(d, curve.y_num, t, c);
+    de_casteljau<N, kSteps, kLeft>(d, curve.y_den, t, e);
+    const Jet1<N, V> xn(t, a[0], a[1], a[2]), xd(t, b[0], b[1], b[2]);
+    const Jet1<N, V> yn(t, c[0], c[1], c[2]), yd(t, e[0], e[1], e[2]);
+    quotient_jet(xn, xd, x, dx, ddx);
+    quotient_jet(yn, yd, y, dy, ddy);
+  }
+
+  template <class D, class V = hn::Vec<D>>
+  HWY_INLINE V distance(D d, const V& u, const V& v, const V& t, hn::Mask<D>& plain) const {
+    return point_distance<N>(d, curve, u, v, t, plain);
+  }
+};
+
+// By Horner's rule on curve.horner (RationalCurve), as the engine's curve_jet_horner:
+//     sum a_i (1-t)^(m-i) t^i = (1-t)^m sum a_i r^i,   r = t / (1-t)   (t <= 1/2),
+//                             = t^m sum a_i r^(m-i),    r = (1-t) / t   (above),
+// r <= 1 either way, so the sum stays as well conditioned as the Bernstein form. Each lane picks
+// its end's coefficient at every step (a blend of two broadcasts); the degree is a run-time
+// number (no array of intermediate values to keep in registers, so one copy serves every degree).
+struct HornerCurve {
+  const RationalCurve& curve;
+
+  // Level `level` (0: values, 1: first derivatives, 2: second) of the four polynomials, before the
+  // factor base^m.
+  template <class D, class V = hn::Vec<D>>
+  HWY_INLINE void level(D d, int level, const V& r, const hn::Mask<D>& low, V out[4]) const {
+    const int n = curve.degree, m = n - level, stride = 3 * n;
+    const int offset = level == 0 ? 0 : (level == 1 ? n + 1 : 2 * n + 1);
+    const double* c[4];
+    for (int p = 0; p < 4; ++p) {
+      c[p] = curve.horner + p * stride + offset;
+      out[p] = hn::IfThenElse(low, hn::Set(d, c[p][m]), hn::Set(d, c[p][0]));
+    }
+    for (int k = 1; k <= m; ++k)
+      for (int p = 0; p < 4; ++p)
+        out[p] = hn::Add(hn::Mul(out[p], r), hn::IfThenElse(low, hn::Set(d, c[p][m - k]), hn::Set(d, c[p][k])));
+  }
+
+  // r, and base^n, base^(n-1), base^(n-2) (base = 1 - t, or t above 1/2).
+  template <class D, class V = hn::Vec<D>>
+  HWY_INLINE hn::Mask<D> ratio(D d, const V& t, V& r, V powers[3]) const {
+    const int n = curve.degree;
+    const V one = hn::Set(d, 1.0), s = hn::Sub(one, t);
+    const hn::Mask<D> low = hn::Le(t, hn::Set(d, 0.5));
+    r = hn::Div(hn::IfThenElse(low, t, s), hn::IfThenElse(low, s, t));
+    const V base = hn::IfThenElse(low, s, t);
+    V base_n2 = one;
+    for (int k = 2; k < n; ++k) base_n2 = hn::Mul(base_n2, base);
+    powers[2] = base_n2;
+    powers[1] = n >= 2 ? hn::Mul(base_n2, base) : one;
+    powers[0] = n >= 2 ? hn::Mul(powers[1], base) : base;
+    return low;
+  }
+
+  template <class D, class V = hn::Vec<D>>
+  HWY_INLINE void jet(D d, const V& t, V& x, V& dx, V& ddx, V& y, V& dy, V& ddy) const {
+    V r, powers[3], value[3][4];
+    const hn::Mask<D> low = ratio(d, t, r, powers);
+    const V zero = hn::Zero(d), two = hn::Set(d, 2.0);
+    for (int j = 0; j < 3; ++j) {
+      if (j > curve.degree) {
+        for (int p = 0; p < 4; ++p) value[j][p] = zero;
+        continue;
+      }
+      level(d, j, r, low, value[j]);
+      for (int p = 0; p < 4; ++p) value[j][p] = hn::Mul(value[j][p], powers[j]);
+    }
+    const auto quotient = [&](int num, int den, V& q, V& dq, V& ddq) {
+      q = hn::Div(value[0][num], value[0][den]);
+      dq = hn::Div(hn::Sub(value[1][num], hn::Mul(value[1][den], q)), value[0][den]);
+      ddq = hn::Div(hn::Sub(hn::Sub(value[2][num], hn::Mul(hn::Mul(two, value[1][den]), dq)), hn::Mul(value[2][den], q)),
+                    value[0][den]);
+    };
+    quotient(0, 1, x, dx, ddx);
+    quotient(2, 3, y, dy, ddy);
+  }
+
+  template <class D, class V = hn::Vec<D>>
+  HWY_INLINE V distance(D d, const V& u, const V& v, const V& t, hn::Mask<D>& plain) const {
+    V r, powers[3], value[4];
+    const hn::Mask<D> low = ratio(d, t, r, powers);
+    level(d, 0, r, low, value);
+    // The common factor base^n cancels in the quotients.
+    return plain_length(hn::Sub(hn::Div(value[0], value[1]), u), hn::Sub(hn::Div(value[2], value[3]), v), plain);
+  }
+};
+
 // The engine's refine_parameter(..., stay_on_segment = true), one lane per point, each lane through
 // exactly the scalar code's sequence of steps (the masks only say which lanes are still at which
 // point of it):
@@ -139,8 +243,8 @@ HWY_INLINE hn::Vec<D> point_distance(D d, const RationalCurve& curve, hn::Vec<D>
 //   measured before it, when it moves t by at most 4 eps max(1, |t|) and P by |P'| moved <= 4 eps,
 //   measured at the new t when only the first holds); a larger one is halved until the distance does not increase (at
 //   most max_halvings times; if none is found, or it does not move t, the iteration stops).
-template <int N, class D>
-HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const NewtonSettings& settings,
+template <class Curve, class D>
+HWY_NOINLINE void rational_newton_group(D d, const Curve& curve, const NewtonSettings& settings,
                                         std::size_t first, std::size_t lanes, const double* HWY_RESTRICT u_in,
                                         const double* HWY_RESTRICT v_in, double* HWY_RESTRICT t_inout,
                                         double* HWY_RESTRICT distance_out) {
@@ -180,18 +284,8 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
   };
 
   for (int iteration = 0; iteration < settings.max_iterations && !hn::AllFalse(d, active); ++iteration) {
-    // The last three points of N - 2 de Casteljau steps (the two coefficients at N = 1, and 0).
-    constexpr int kSteps = N >= 2 ? N - 2 : 0, kLeft = N >= 2 ? 3 : 2;
-    V a[3] = {zero, zero, zero}, b[3] = {zero, zero, zero}, c[3] = {zero, zero, zero}, e[3] = {zero, zero, zero};
-    de_casteljau<N, kSteps, kLeft>(d, curve.x_num, t, a);
-    de_casteljau<N, kSteps, kLeft>(d, curve.x_den, t, b);
-    de_casteljau<N, kSteps, kLeft>(d, curve.y_num, t, c);
-    de_casteljau<N, kSteps, kLeft>(d, curve.y_den, t, e);
-    const Jet1<N, V> xn(t, a[0], a[1], a[2]), xd(t, b[0], b[1], b[2]);
-    const Jet1<N, V> yn(t, c[0], c[1], c[2]), yd(t, e[0], e[1], e[2]);
     V x, dx, ddx, y, dy, ddy;
-    quotient_jet(xn, xd, x, dx, ddx);
-    quotient_jet(yn, yd, y, dy, ddy);
+    curve.jet(d, t, x, dx, ddx, y, dy, ddy);
     const V ex = hn::Sub(x, u), ey = hn::Sub(y, v);
     M plain;
     const V h = plain_length(ex, ey, plain);
@@ -241,7 +335,7 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
     for (int halving = 0; halving < settings.max_halvings && !hn::AllFalse(d, search); ++halving) {
       const V next = hn::Min(hn::Max(hn::Add(t, step), zero), one);
       M next_plain;
-      const V dn = point_distance<N>(d, curve, u, v, next, next_plain);
+      const V dn = curve.distance(d, u, v, next, next_plain);
       const M bad = hn::And(search, hn::Not(next_plain));
       give_back(bad);
       search = hn::AndNot(bad, search);
@@ -262,7 +356,7 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
 
   if (!hn::AllFalse(d, final_distance)) {
     M plain;
-    const V h = point_distance<N>(d, curve, u, v, t, plain);
+    const V h = curve.distance(d, u, v, t, plain);
     unsettled = hn::Or(unsettled, hn::And(final_distance, hn::Not(plain)));
     result = hn::IfThenElse(final_distance, h, result);
   }
@@ -289,20 +383,27 @@ HWY_NOINLINE void rational_newton_group(D d, const RationalCurve& curve, const N
 template <int N>
 inline constexpr int kNewtonWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128 || N > 24) ? 1 : 2;
 
-template <int N>
-void rational_newton_fixed(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
-                           const double* u, const double* v, double* t, double* distance) {
-  using Wide = wide::Tag<kNewtonWideVectors<N>>;
+template <class Curve, int kWideVectors>
+void rational_newton_groups(const Curve& curve, const NewtonSettings& settings, std::size_t count, const double* u,
+                            const double* v, double* t, double* distance) {
+  using Wide = wide::Tag<kWideVectors>;
   constexpr std::size_t LW = wide::MaxLanes(Wide());
   for (std::size_t first = 0; first < count; first += LW)
-    rational_newton_group<N>(Wide(), curve, settings, first, std::min(LW, count - first), u, v, t, distance);
+    rational_newton_group(Wide(), curve, settings, first, std::min(LW, count - first), u, v, t, distance);
 }
 
 void rational_newton_batch(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                            const double* u, const double* v, double* t, double* distance) {
   for (std::size_t l = 0; l < count; ++l) distance[l] = std::numeric_limits<double>::quiet_NaN();
+  if (curve.horner) {
+    check_size<kRationalNewtonMinDegree, kRationalNewtonMaxDegree>("rational_newton", curve.degree);  // one copy for every degree: Horner keeps no array of points in registers
+    rational_newton_groups<HornerCurve, kNewtonWideVectors<2>>(HornerCurve{curve}, settings, count, u, v, t, distance);
+    return;
+  }
   dispatch_size<kRationalNewtonMinDegree, kRationalNewtonMaxDegree>("rational_newton", curve.degree, [&](auto size) {
-    rational_newton_fixed<decltype(size)::value>(curve, settings, count, u, v, t, distance);
+    constexpr int N = decltype(size)::value;
+    rational_newton_groups<CasteljauCurve<N>, kNewtonWideVectors<N>>(CasteljauCurve<N>{curve}, settings, count, u, v,
+                                                                   t, distance);
   });
 }
 
