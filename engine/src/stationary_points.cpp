@@ -157,7 +157,7 @@ void stationary_pieces(const PlanData& plan, OffCurveData& data) {
 }
 
 NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, double v0, double hint,
-                                              double hint_distance) {
+                                              double hint_distance, int hint_stationary) {
   const OffCurveData& data = off_curve_data(plan);
   NearestOnSegment best;
   best.distance = std::numeric_limits<double>::infinity();
@@ -173,10 +173,11 @@ NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, d
   // at a stationary point, the interval below that holds it needs no search of its own.
   double stationary_hint = std::numeric_limits<double>::quiet_NaN();
   if (hint >= 0.0 && hint <= 1.0) {
-    const Refined r = std::isfinite(hint_distance) ? Refined{hint, hint_distance}
-                                                   : refine_parameter(plan, u0, v0, hint, /*stay_on_segment=*/true);
+    const bool refined = std::isfinite(hint_distance);
+    const Refined r = refined ? Refined{hint, hint_distance}
+                              : refine_parameter(plan, u0, v0, hint, /*stay_on_segment=*/true);
     consider(r.t, r.distance);
-    if (stationary_point(plan, u0, v0, r.t, r.distance)) {
+    if (refined && hint_stationary >= 0 ? hint_stationary == 1 : stationary_point(plan, u0, v0, r.t, r.distance)) {
       stationary_hint = r.t;
       // The quick proof: the isolation certificate with the point's own distance (a point near
       // one branch, most points: one comparison instead of the search below).

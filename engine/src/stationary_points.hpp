@@ -50,9 +50,12 @@ struct NearestOnSegment {
 
 // The nearest point of the segment to (u0, v0), normalized coordinates; `hint` (if in [0, 1]) is a
 // start the caller already has, refined here unless `hint_distance` is given: then the hint is
-// already refine_parameter's answer and hint_distance its distance. When not certified, t and
-// distance are the best found so far.
+// already refined (a stationary point of the distance, or where the safeguards stopped) and
+// hint_distance its distance; `hint_stationary` is then stationary_point's answer for it where the
+// caller has it (1 or 0; -1: not known, tested here). When not certified, t and distance are the
+// best found so far.
 NearestOnSegment certified_nearest_on_segment(const PlanData& plan, double u0, double v0, double hint,
-                                              double hint_distance = std::numeric_limits<double>::quiet_NaN());
+                                              double hint_distance = std::numeric_limits<double>::quiet_NaN(),
+                                              int hint_stationary = -1);
 
 }  // namespace bezinv::detail

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -23,6 +24,10 @@ namespace bezinv {
 namespace {
 
 using test_support::same_bits;
+
+kernels::NewtonSettings settings_for_test() {
+  return {kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep, kNewtonMaxHalvings, kNewtonFinalStep};
+}
 
 // Horner's rule (curve_jet_horner, for the stationarity test) against de Casteljau (curve_jet):
 // the same jet to the rounding of either, at every degree, over the whole segment.
@@ -86,6 +91,93 @@ TEST(Refine, KernelGivesTheScalarRefinementsBits) {
     EXPECT_EQ(compared, 24 * 2 * 37);
     EXPECT_GE(line_searches, 300);  // the line search and clamping really were exercised
   }
+}
+
+// With Horner's jets the kernel's answers are not refine_parameter's bits, but the same nearest
+// points to rounding, and stationary points as stationary_point tests them (the off-curve path
+// takes them as its hints).
+TEST(Refine, KernelOnHornersJetsEndsWhereTheScalarRefinementDoes) {
+  for (const kernels::Implementation* implementation : kernels::available_implementations()) {
+    std::mt19937_64 rng(43);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1.0, 1.0);
+    int compared = 0, stationary = 0;
+    for (int n = 1; n <= 24; ++n)
+      for (bool common : {true, false}) {
+        detail::PlanData plan = test_support::random_polynomials_plan(n, common, rng);
+        detail::horner_coefficients(plan);
+        std::vector<double> u, v, t, distance;
+        for (int k = 0; k < 37; ++k) {
+          const double t_true = unit(rng);
+          const auto p = plan.normalized_point(t_true);
+          const double noise = k % 3 == 0 ? 0.0 : std::pow(10.0, -1.0 - k % 9);
+          u.push_back(p[0] + noise * coordinate(rng));
+          v.push_back(p[1] + noise * coordinate(rng));
+          t.push_back(std::clamp(k % 5 == 0 ? unit(rng) : t_true + 1e-3 * coordinate(rng), 0.0, 1.0));
+        }
+        const std::vector<double> start = t;
+        distance.assign(t.size(), 0.0);
+        kernels::RationalCurve curve{n, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(), plan.y_den.data()};
+        curve.horner = plan.horner.data();
+        implementation->rational_newton(curve, settings_for_test(), t.size(), u.data(), v.data(), t.data(),
+                                        distance.data());
+        for (std::size_t l = 0; l < t.size(); ++l) {
+          SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " lane " + std::to_string(l));
+          const detail::Refined r = detail::refine_parameter(plan, u[l], v[l], start[l], true);
+          ASSERT_FALSE(std::isnan(distance[l]));
+          // Both are minima of the same distance from the same start: the same one, to the
+          // rounding of the two evaluations (|P'| ~ n here, distances ~ 1).
+          if (!detail::stationary_point(plan, u[l], v[l], r.t, r.distance)) continue;  // stopped elsewhere (an end)
+          EXPECT_NEAR(t[l], r.t, 1e-9) << start[l];
+          EXPECT_NEAR(distance[l], r.distance, 1e-14 * n) << start[l];
+          ++compared;
+          // Stationary as the test sees it (cos(P - P0, P') <= 1e-8) wherever that is above the
+          // rounding: off the curve by more than a tolerance (the off-curve path's points).
+          if (distance[l] > 1e-7) {
+            EXPECT_TRUE(detail::stationary_point(plan, u[l], v[l], t[l], distance[l]));
+            ++stationary;
+          }
+        }
+      }
+    EXPECT_GE(compared, 900);
+    EXPECT_GE(stationary, 500);
+  }
+}
+
+// stationary_points (many lanes at once) answers as stationary_point does lane by lane, for
+// stationary points (refined), other parameters, the ends, and NaN.
+TEST(Refine, StationaryPointsOfManyLanesAreStationaryPointsAnswers) {
+  std::mt19937_64 rng(44);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1.0, 1.0);
+  int yes = 0, no = 0;
+  for (int n = 1; n <= kMaxDegree; ++n)
+    for (bool common : {true, false}) {
+      detail::PlanData plan = test_support::random_polynomials_plan(n, common, rng);
+      detail::horner_coefficients(plan);
+      std::vector<double> u, v, t, distance;
+      for (std::size_t k = 0; k < detail::kMaxStationaryLanes; ++k) {
+        const auto p = plan.normalized_point(unit(rng));
+        u.push_back(p[0] + 1e-2 * coordinate(rng));
+        v.push_back(p[1] + 1e-2 * coordinate(rng));
+        double at = k % 4 == 0 ? unit(rng) : k % 9 == 0 ? static_cast<double>(k % 2) : unit(rng);
+        double d = std::hypot(plan.normalized_point(at)[0] - u.back(), plan.normalized_point(at)[1] - v.back());
+        if (k % 4 != 0) {
+          const detail::Refined r = detail::refine_parameter(plan, u.back(), v.back(), at, true);
+          at = r.t, d = r.distance;
+        }
+        if (k == 13) at = std::numeric_limits<double>::quiet_NaN();
+        t.push_back(at);
+        distance.push_back(d);
+      }
+      std::vector<std::uint8_t> many(t.size(), 7);
+      detail::stationary_points(plan, t.size(), u.data(), v.data(), t.data(), distance.data(), many.data());
+      for (std::size_t l = 0; l < t.size(); ++l) {
+        const bool one = detail::stationary_point(plan, u[l], v[l], t[l], distance[l]);
+        EXPECT_EQ(many[l], one ? 1 : 0) << "n " << n << " lane " << l << " t " << t[l];
+        (one ? yes : no) += 1;
+      }
+    }
+  EXPECT_GE(yes, 1000);
+  EXPECT_GE(no, 1000);
 }
 
 }  // namespace

@@ -16,27 +16,39 @@
 namespace bezinv::detail {
 namespace {
 
-// A start for Newton towards the nearest point of (u0, v0): the nearest of every `stride`-th
-// sample of the curve (plan.nearest_samples), moved to the vertex of the parabola through the
-// squared distances of it and its two neighbours (kept within one spacing of it).
-double nearest_sample(const PlanData& plan, double u0, double v0, int stride) {
+// Starts for Newton towards the nearest points of (u[l], v[l]), l < count: the nearest of every
+// `stride`-th sample of the curve (plan.nearest_samples), moved to the vertex of the parabola
+// through the squared distances of it and its two neighbours (kept within one spacing of it).
+// Sample by sample over all lanes at once, so that the inner loop vectorizes; the first of equally
+// near samples is kept, as a search point by point would.
+void nearest_samples(const PlanData& plan, const double* u, const double* v, std::size_t count, int stride, double* t) {
   const double* p = plan.nearest_samples.data();
   const int last = static_cast<int>(plan.nearest_samples.size() / 2) - 1;
-  const auto distance2 = [&](int k) {
-    const double dx = p[2 * k] - u0, dy = p[2 * k + 1] - v0;
+  std::array<double, kBatchLanes> best, at;
+  best.fill(std::numeric_limits<double>::infinity());
+  at.fill(0.0);
+  for (int k = 0; k <= last; k += stride) {
+    const double x = p[2 * k], y = p[2 * k + 1], sample = k;
+    for (std::size_t l = 0; l < count; ++l) {
+      const double dx = x - u[l], dy = y - v[l], d2 = dx * dx + dy * dy;
+      const bool nearer = d2 < best[l];
+      best[l] = nearer ? d2 : best[l];
+      at[l] = nearer ? sample : at[l];
+    }
+  }
+  const auto distance2 = [&](int k, std::size_t l) {
+    const double dx = p[2 * k] - u[l], dy = p[2 * k + 1] - v[l];
     return dx * dx + dy * dy;
   };
-  double best = std::numeric_limits<double>::infinity();
-  int at = 0;
-  for (int k = 0; k <= last; k += stride)
-    if (const double d2 = distance2(k); d2 < best) best = d2, at = k;
-  double t = static_cast<double>(at) / last;
-  if (at >= stride && at + stride <= last) {
-    const double before = distance2(at - stride), after = distance2(at + stride);
-    const double curvature = before - 2 * best + after;
-    if (curvature > 0) t += std::clamp(0.5 * (before - after) / curvature, -1.0, 1.0) * stride / last;
+  for (std::size_t l = 0; l < count; ++l) {
+    const int k = static_cast<int>(at[l]);
+    t[l] = static_cast<double>(k) / last;
+    if (k >= stride && k + stride <= last) {
+      const double before = distance2(k - stride, l), after = distance2(k + stride, l);
+      const double curvature = before - 2 * best[l] + after;
+      if (curvature > 0) t[l] += std::clamp(0.5 * (before - after) / curvature, -1.0, 1.0) * stride / last;
+    }
   }
-  return t;
 }
 
 }  // namespace
@@ -73,10 +85,11 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
     const std::size_t l = newton_lane_of[k];
     lane_of[m] = static_cast<std::uint8_t>(l);
     u[m] = w.u[l], v[m] = w.v[l];
-    t[m] = nearest_sample(plan, u[m], v[m], kNearestSamplesPerDegree / 4);
     ++m;
   }
   if (m == 0) return clock.lap(&StageSeconds::off_curve);
+  nearest_samples(plan, u.data() + newton_from, v.data() + newton_from, newton, kNearestSamplesPerDegree / 4,
+                  t.data() + newton_from);
 
   // 2. Newton from the starts, lane-batched: refine_parameter's steps on jets by Horner's rule
   //    (O(n) where its de Casteljau is O(n^2)). Their bits need not be the scalar code's: the
@@ -92,8 +105,11 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
   // 3. Per lane, the proofs: the refined start as the certified search's hint (usually the
   //    nearest point already: the isolation certificate proves it at once near one branch, the
   //    search over the pieces elsewhere), then the extension.
+  std::array<std::uint8_t, kBatchLanes> stationary;
+  static_assert(kBatchLanes <= kMaxStationaryLanes);
+  stationary_points(plan, m, u.data(), v.data(), t.data(), distance.data(), stationary.data());
   for (std::size_t k = 0; k < m; ++k) {
-    const NearestOnSegment nearest = certified_nearest_on_segment(plan, u[k], v[k], t[k], distance[k]);
+    const NearestOnSegment nearest = certified_nearest_on_segment(plan, u[k], v[k], t[k], distance[k], stationary[k]);
     if (!nearest.certified || !(nearest.distance > radius) || !extension_clear(plan, u[k], v[k], radius)) continue;
     const std::size_t l = lane_of[k];
     w.active[l] = 0;
