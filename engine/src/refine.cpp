@@ -227,12 +227,12 @@ void stationary_points(const PlanData& plan, std::size_t count, const double* u,
   }
   constexpr std::size_t L = kMaxStationaryLanes;
   count = std::min(count, L);
+  // (Every select below is on t[l] <= 0.5 itself: with a stored flag GCC would not vectorize.)
   std::array<double, L> r, base, scale0, scale1;
-  std::array<bool, L> low;
   for (std::size_t l = 0; l < count; ++l) {
-    low[l] = t[l] <= 0.5;
-    r[l] = low[l] ? t[l] / (1 - t[l]) : (1 - t[l]) / t[l];
-    base[l] = low[l] ? 1 - t[l] : t[l];
+    const double s = 1 - t[l];
+    r[l] = (t[l] <= 0.5 ? t[l] : s) / (t[l] <= 0.5 ? s : t[l]);
+    base[l] = t[l] <= 0.5 ? s : t[l];
   }
   for (std::size_t l = 0; l < count; ++l) {
     double base_n2 = 1.0;
@@ -249,10 +249,10 @@ void stationary_points(const PlanData& plan, std::size_t count, const double* u,
     for (int p = 0; p < 4; ++p) {
       const double* c = a + p * stride + offsets[level];
       std::array<double, L>& value = jet[level][p];
-      for (std::size_t l = 0; l < count; ++l) value[l] = low[l] ? c[m] : c[0];
+      for (std::size_t l = 0; l < count; ++l) value[l] = t[l] <= 0.5 ? c[m] : c[0];
       for (int k = 1; k <= m; ++k) {
         const double from_low = c[m - k], from_high = c[k];
-        for (std::size_t l = 0; l < count; ++l) value[l] = value[l] * r[l] + (low[l] ? from_low : from_high);
+        for (std::size_t l = 0; l < count; ++l) value[l] = value[l] * r[l] + (t[l] <= 0.5 ? from_low : from_high);
       }
       const std::array<double, L>& scale = level == 0 ? scale0 : scale1;
       for (std::size_t l = 0; l < count; ++l) value[l] *= scale[l];

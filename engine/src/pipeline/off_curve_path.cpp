@@ -30,10 +30,11 @@ void nearest_samples(const PlanData& plan, const double* u, const double* v, std
   for (int k = 0; k <= last; k += stride) {
     const double x = p[2 * k], y = p[2 * k + 1], sample = k;
     for (std::size_t l = 0; l < count; ++l) {
-      const double dx = x - u[l], dy = y - v[l], d2 = dx * dx + dy * dy;
-      const bool nearer = d2 < best[l];
-      best[l] = nearer ? d2 : best[l];
-      at[l] = nearer ? sample : at[l];
+      // (Both selects branch-free, so that GCC vectorizes: at[l] and the sample are whole numbers,
+      // exact in the sum.)
+      const double dx = x - u[l], dy = y - v[l], d2 = dx * dx + dy * dy, nearest = best[l], a = at[l];
+      at[l] = a + (d2 < nearest) * (sample - a);
+      best[l] = d2 < nearest ? d2 : nearest;
     }
   }
   const auto distance2 = [&](int k, std::size_t l) {
