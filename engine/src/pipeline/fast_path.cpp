@@ -12,6 +12,7 @@
 #include "pipeline/decide.hpp"
 #include "pipeline/form_b.hpp"
 #include "pipeline/formula_path.hpp"
+#include "pipeline/off_curve_path.hpp"
 #include "refine.hpp"
 
 namespace bezinv::detail {
@@ -83,6 +84,33 @@ void refine_grouped(const kernels::Implementation& kernel, const kernels::Ration
   }
 }
 
+// The lanes the loop of fast_path leaves to the off-curve path go there before it: those the
+// seed did not settle, those refined onto the segment farther than the tolerance, and those whose
+// algebraic t is off the segment (a formula's t for a point off the curve, its projection from the
+// centre past an end, mostly), which the kernel leaves to settle(): two scalar walks, along the
+// extension and on the segment. Where the off-curve path proves such a point off the curve
+// (nothing of the segment or of the extension within the tolerance) those walks could find nothing
+// within it, and the lane would have gone on to the same proofs from the same start. The lanes
+// they do not prove go on as before (settle() then runs for them); off_curve_path does not look at
+// them again. One call for all of them keeps the kernel's groups full.
+void off_curve_first(const PlanData& plan, const InvertOptions& options, double tolerance, std::size_t count,
+                     BatchWorkspace& w, PointResult* results, StageClock& clock) {
+  std::array<std::uint8_t, kBatchLanes> active, leaves;
+  std::size_t left = 0;
+  for (std::size_t l = 0; l < count; ++l) {
+    const double t = w.t_algebraic[l];
+    const bool refined_off = t >= 0.0 && t <= 1.0 && std::isfinite(w.distance[l]) && w.distance[l] > tolerance;
+    leaves[l] = w.active[l] && !w.drops[l] && (!std::isfinite(t) || !(t >= 0.0 && t <= 1.0) || refined_off);
+    left += leaves[l];
+  }
+  if (left == 0) return;
+  clock.lap(&StageSeconds::refine);
+  for (std::size_t l = 0; l < count; ++l) active[l] = w.active[l], w.active[l] = leaves[l];
+  off_curve_path(plan, options, count, w, results, clock);
+  for (std::size_t l = 0; l < count; ++l)
+    if (!leaves[l]) w.active[l] = active[l];
+}
+
 }  // namespace
 
 void fast_path(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
@@ -97,6 +125,7 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
   // formula lanes have no B, so on the formula path they take the two passes: the isolation
   // certificate, then the gap pass for the lanes it leaves.
   const bool two_passes = n >= 3 || formula;
+  std::fill_n(w.off_curve_tried.begin(), count, std::uint8_t{0});
   if (formula) {
     formula_or_seed(plan, points, results, count, w);
     clock.lap(&StageSeconds::kernel);
@@ -146,6 +175,7 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
         answer_fast(plan, w.t_refined[l], w.distance[l], w.estimate[l], PointResult::nan, results[l], path_of(l));
       }
   }
+  if (two_passes) off_curve_first(plan, options, tolerance, count, w, results, clock);
   std::size_t waiting = 0;  // lanes of pass 2
   for (std::size_t l = 0; l < count; ++l) {
     if (!w.active[l] || w.drops[l]) continue;

@@ -72,7 +72,10 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
   std::array<double, kBatchLanes> u, v, t, distance;
   std::size_t m = 0, newton = 0;
   for (std::size_t l = 0; l < count; ++l) {
-    if (!w.active[l] || !(std::max(std::abs(w.u[l]), std::abs(w.v[l])) <= kOffCurvePathMaxCoordinate)) continue;
+    if (!w.active[l] || w.off_curve_tried[l] ||
+        !(std::max(std::abs(w.u[l]), std::abs(w.v[l])) <= kOffCurvePathMaxCoordinate))
+      continue;
+    w.off_curve_tried[l] = 1;
     if (w.t_refined[l] >= 0.0 && w.t_refined[l] <= 1.0 && std::isfinite(w.distance[l])) {
       lane_of[m] = static_cast<std::uint8_t>(l);
       u[m] = w.u[l], v[m] = w.v[l], t[m] = w.t_refined[l], distance[m] = w.distance[l];

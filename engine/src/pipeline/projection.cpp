@@ -33,7 +33,9 @@ void projection_path(const PlanData& plan, const InvertOptions& options, std::si
   const double tolerance = normalized_tolerance(plan, options), radius = off_curve_radius(tolerance);
   const FormulaPathData& f = formula_path_data(plan);
   for (std::size_t l = 0; l < count; ++l) {
-    if (!w.active[l] || !(std::max(std::abs(w.u[l]), std::abs(w.v[l])) <= kOffCurvePathMaxCoordinate)) continue;
+    if (!w.active[l] || w.off_curve_tried[l] ||
+        !(std::max(std::abs(w.u[l]), std::abs(w.v[l])) <= kOffCurvePathMaxCoordinate))
+      continue;
     const double t = w.t_refined[l], d = w.distance[l];
     if (!(t >= 0.0 && t <= 1.0 && d > radius)) continue;
     const double projected = formula_parameter(f, w.u[l], w.v[l]);
