@@ -219,50 +219,16 @@ bool stationary_point(const PlanData& plan, double u0, double v0, double t, doub
 
 void stationary_points(const PlanData& plan, std::size_t count, const double* u, const double* v, const double* t,
                        const double* distance, std::uint8_t* stationary) {
-  // horner_jet<false>'s operations, in its order, lane by lane: the loops over lanes innermost.
-  const int n = plan.degree;
-  if (n < 1) {
-    for (std::size_t l = 0; l < count; ++l) stationary[l] = stationary_point(plan, u[l], v[l], t[l], distance[l]);
-    return;
-  }
-  constexpr std::size_t L = kMaxStationaryLanes;
-  count = std::min(count, L);
-  // (Every select below is on t[l] <= 0.5 itself: with a stored flag GCC would not vectorize.)
-  std::array<double, L> r, base, scale0, scale1;
+  // P and P' of every lane by the kernels' copy of curve_slope_horner (the same doubles), then
+  // stationary_point's test on them.
+  count = std::min(count, kMaxStationaryLanes);
+  std::array<double, kMaxStationaryLanes> x, y, dx, dy;
+  kernels::RationalCurve curve = kernel_curve(plan);
+  curve.horner = plan.horner.data();
+  kernels::active_implementation().rational_slope(curve, count, t, x.data(), y.data(), dx.data(), dy.data());
   for (std::size_t l = 0; l < count; ++l) {
-    const double s = 1 - t[l];
-    r[l] = (t[l] <= 0.5 ? t[l] : s) / (t[l] <= 0.5 ? s : t[l]);
-    base[l] = t[l] <= 0.5 ? s : t[l];
-  }
-  for (std::size_t l = 0; l < count; ++l) {
-    double base_n2 = 1.0;
-    for (int k = 2; k < n; ++k) base_n2 *= base[l];
-    scale1[l] = n >= 2 ? base_n2 * base[l] : 1.0;
-    scale0[l] = n >= 2 ? scale1[l] * base[l] : base[l];
-  }
-  // jet[level][p][l]: value (level 0) and first derivative (level 1) of polynomial p.
-  std::array<std::array<std::array<double, L>, 4>, 2> jet;
-  const double* a = plan.horner.data();
-  const int offsets[2] = {0, n + 1}, stride = 3 * n;
-  for (int level = 0; level < 2 && level <= n; ++level) {
-    const int m = n - level;
-    for (int p = 0; p < 4; ++p) {
-      const double* c = a + p * stride + offsets[level];
-      std::array<double, L>& value = jet[level][p];
-      for (std::size_t l = 0; l < count; ++l) value[l] = t[l] <= 0.5 ? c[m] : c[0];
-      for (int k = 1; k <= m; ++k) {
-        const double from_low = c[m - k], from_high = c[k];
-        for (std::size_t l = 0; l < count; ++l) value[l] = value[l] * r[l] + (t[l] <= 0.5 ? from_low : from_high);
-      }
-      const std::array<double, L>& scale = level == 0 ? scale0 : scale1;
-      for (std::size_t l = 0; l < count; ++l) value[l] *= scale[l];
-    }
-  }
-  for (std::size_t l = 0; l < count; ++l) {
-    const double x = jet[0][0][l] / jet[0][1][l], dx = (jet[1][0][l] - jet[1][1][l] * x) / jet[0][1][l];
-    const double y = jet[0][2][l] / jet[0][3][l], dy = (jet[1][2][l] - jet[1][3][l] * y) / jet[0][3][l];
-    const double along = (x - u[l]) * dx + (y - v[l]) * dy;
-    stationary[l] = std::abs(along) <= kStationaryCosine * distance[l] * length(dx, dy);
+    const double along = (x[l] - u[l]) * dx[l] + (y[l] - v[l]) * dy[l];
+    stationary[l] = std::abs(along) <= kStationaryCosine * distance[l] * length(dx[l], dy[l]);
   }
 }
 

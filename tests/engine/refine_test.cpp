@@ -143,6 +143,37 @@ TEST(Refine, KernelOnHornersJetsEndsWhereTheScalarRefinementDoes) {
   }
 }
 
+// Every implementation's rational_slope gives curve_slope_horner's bits: P and P' at any t of the
+// segment, both sides of 1/2 and the ends, every degree and both kinds of denominator.
+TEST(Refine, KernelSlopeIsCurveSlopeHornersBits) {
+  for (const kernels::Implementation* implementation : kernels::available_implementations()) {
+    std::mt19937_64 rng(45);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int compared = 0;
+    for (int n = 1; n <= kMaxDegree; ++n)
+      for (bool common : {true, false}) {
+        detail::PlanData plan = test_support::random_polynomials_plan(n, common, rng);
+        detail::horner_coefficients(plan);
+        std::vector<double> t = {0.0, 1.0, 0.5, std::nextafter(0.5, 1.0), 1e-300};
+        while (t.size() < 21) t.push_back(unit(rng));  // 21: not a multiple of any vector width
+        std::vector<double> x(t.size()), y(t.size()), dx(t.size()), dy(t.size());
+        kernels::RationalCurve curve{n, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(), plan.y_den.data()};
+        curve.horner = plan.horner.data();
+        implementation->rational_slope(curve, t.size(), t.data(), x.data(), y.data(), dx.data(), dy.data());
+        for (std::size_t l = 0; l < t.size(); ++l) {
+          SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " t=" + std::to_string(t[l]));
+          const detail::CurveJet j = detail::curve_slope_horner(plan, t[l]);
+          EXPECT_TRUE(same_bits(x[l], j.x));
+          EXPECT_TRUE(same_bits(y[l], j.y));
+          EXPECT_TRUE(same_bits(dx[l], j.dx));
+          EXPECT_TRUE(same_bits(dy[l], j.dy));
+          ++compared;
+        }
+      }
+    EXPECT_EQ(compared, kMaxDegree * 2 * 21);
+  }
+}
+
 // stationary_points (many lanes at once) answers as stationary_point does lane by lane, for
 // stationary points (refined), other parameters, the ends, and NaN.
 TEST(Refine, StationaryPointsOfManyLanesAreStationaryPointsAnswers) {

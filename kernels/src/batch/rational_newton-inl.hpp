@@ -407,6 +407,48 @@ void rational_newton_batch(const RationalCurve& curve, const NewtonSettings& set
   });
 }
 
+// P and P' by Horner's rule, lane by lane as the engine's curve_slope_horner (levels 0 and 1 of
+// HornerCurve, each times its power of the base, then the quotients).
+void rational_slope_batch(const RationalCurve& curve, std::size_t count, const double* t, double* x, double* y,
+                          double* dx, double* dy) {
+  check_size<kRationalNewtonMinDegree, kRationalNewtonMaxDegree>("rational_slope", curve.degree);
+  using D = wide::Tag<kNewtonWideVectors<2>>;
+  using V = hn::Vec<D>;
+  const D d;
+  constexpr std::size_t L = hn::MaxLanes(D());
+  const HornerCurve horner{curve};
+  HWY_ALIGN double buffer[L];
+  for (std::size_t first = 0; first < count; first += L) {
+    const std::size_t lanes = std::min(L, count - first);
+    V at;
+    if (lanes == L) {
+      at = hn::LoadU(d, t + first);
+    } else {
+      for (std::size_t l = 0; l < L; ++l) buffer[l] = l < lanes ? t[first + l] : 0.0;
+      at = hn::Load(d, buffer);
+    }
+    V r, powers[3], value[2][4];
+    const hn::Mask<D> low = horner.ratio(d, at, r, powers);
+    for (int level = 0; level < 2; ++level) {
+      horner.level(d, level, r, low, value[level]);
+      for (int p = 0; p < 4; ++p) value[level][p] = hn::Mul(value[level][p], powers[level]);
+    }
+    const V px = hn::Div(value[0][0], value[0][1]), py = hn::Div(value[0][2], value[0][3]);
+    const V pdx = hn::Div(hn::Sub(value[1][0], hn::Mul(value[1][1], px)), value[0][1]);
+    const V pdy = hn::Div(hn::Sub(value[1][2], hn::Mul(value[1][3], py)), value[0][3]);
+    const V* outputs[4] = {&px, &py, &pdx, &pdy};
+    double* targets[4] = {x, y, dx, dy};
+    for (int k = 0; k < 4; ++k) {
+      if (lanes == L) {
+        hn::StoreU(*outputs[k], d, targets[k] + first);
+      } else {
+        hn::Store(*outputs[k], d, buffer);
+        std::copy_n(buffer, lanes, targets[k] + first);
+      }
+    }
+  }
+}
+
 }  // namespace bezinv::kernels::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 

@@ -19,5 +19,9 @@ RationalNewtonKernel rational_newton_kernel(std::int64_t target) {
   return for_target<RationalNewtonKernel>(target, BEZINV_PER_TARGET(rational_newton_batch));
 }
 
+RationalSlopeKernel rational_slope_kernel(std::int64_t target) {
+  return for_target<RationalSlopeKernel>(target, BEZINV_PER_TARGET(rational_slope_batch));
+}
+
 }  // namespace bezinv::kernels::batch
 #endif  // HWY_ONCE

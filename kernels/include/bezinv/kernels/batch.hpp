@@ -151,6 +151,14 @@ struct Implementation {
   void (*rational_newton)(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                           const double* u, const double* v, double* t, double* distance);
 
+  // P(t[l]) = (x[l], y[l]) and P'(t[l]) = (dx[l], dy[l]) of `curve` by Horner's rule on
+  // curve.horner (required), for `count` lanes: the engine's curve_slope_horner, operation for
+  // operation and without fused multiply-add, so every implementation gives its bits (the
+  // off-curve path's stationarity test of many hints at once). curve.degree in
+  // [kRationalNewtonMinDegree, kRationalNewtonMaxDegree].
+  void (*rational_slope)(const RationalCurve& curve, std::size_t count, const double* t, double* x, double* y,
+                         double* dx, double* dy);
+
   // The paper's read-out (Marco & Martinez Sect. 3) for every lane's vector z (n components,
   // laid out as null_vector writes it; n in [kBernsteinParameterMinSize, kBernsteinParameterMaxSize]): for z along the Bernstein basis (beta_0(t), ...,
   // beta_{n-1}(t)) of degree n-1, consecutive components give t = i z_i / (i z_i + (n-i) z_{i-1}),
