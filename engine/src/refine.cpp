@@ -217,8 +217,8 @@ bool stationary_point(const PlanData& plan, double u0, double v0, double t, doub
   return std::abs(along) <= kStationaryCosine * distance * length(jet.dx, jet.dy);
 }
 
-void stationary_points(const PlanData& plan, std::size_t count, const double* u, const double* v, const double* t,
-                       const double* distance, std::uint8_t* stationary) {
+void stationary_point_lanes(const PlanData& plan, std::size_t count, const double* u, const double* v,
+                            const double* t, const double* distance, std::uint8_t* stationary) {
   // P and P' of every lane by the kernels' copy of curve_slope_horner (the same doubles), then
   // stationary_point's test on them.
   count = std::min(count, kMaxStationaryLanes);

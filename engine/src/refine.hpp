@@ -57,8 +57,8 @@ bool stationary_point(const PlanData& plan, double u0, double v0, double t, doub
 // from the kernels' rational_slope (Horner's rule is a chain of dependent steps per point: across
 // SIMD lanes its latency is hidden).
 inline constexpr std::size_t kMaxStationaryLanes = 64;
-void stationary_points(const PlanData& plan, std::size_t count, const double* u, const double* v, const double* t,
-                       const double* distance, std::uint8_t* stationary);
+void stationary_point_lanes(const PlanData& plan, std::size_t count, const double* u, const double* v,
+                            const double* t, const double* distance, std::uint8_t* stationary);
 
 // The number of intervals S of the nearest-point search's samples k / S at degree n.
 int nearest_sample_count(int degree);

@@ -174,9 +174,9 @@ TEST(Refine, KernelSlopeIsCurveSlopeHornersBits) {
   }
 }
 
-// stationary_points (many lanes at once) answers as stationary_point does lane by lane, for
+// stationary_point_lanes (many lanes at once) answers as stationary_point does lane by lane, for
 // stationary points (refined), other parameters, the ends, and NaN.
-TEST(Refine, StationaryPointsOfManyLanesAreStationaryPointsAnswers) {
+TEST(Refine, StationaryPointLanesAnswersAsStationaryPointDoes) {
   std::mt19937_64 rng(44);
   std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1.0, 1.0);
   int yes = 0, no = 0;
@@ -200,7 +200,7 @@ TEST(Refine, StationaryPointsOfManyLanesAreStationaryPointsAnswers) {
         distance.push_back(d);
       }
       std::vector<std::uint8_t> many(t.size(), 7);
-      detail::stationary_points(plan, t.size(), u.data(), v.data(), t.data(), distance.data(), many.data());
+      detail::stationary_point_lanes(plan, t.size(), u.data(), v.data(), t.data(), distance.data(), many.data());
       for (std::size_t l = 0; l < t.size(); ++l) {
         const bool one = detail::stationary_point(plan, u[l], v[l], t[l], distance[l]);
         EXPECT_EQ(many[l], one ? 1 : 0) << "n " << n << " lane " << l << " t " << t[l];
