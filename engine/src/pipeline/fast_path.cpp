@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "bezinv/kernels/batch.hpp"
 #include "degree_drop.hpp"
@@ -95,12 +96,17 @@ void refine_grouped(const kernels::Implementation& kernel, const kernels::Ration
 // them again. One call for all of them keeps the kernel's groups full.
 void off_curve_first(const PlanData& plan, const InvertOptions& options, double tolerance, std::size_t count,
                      BatchWorkspace& w, PointResult* results, StageClock& clock) {
+  std::uint8_t any_active = 0;  // on the curve, every lane is usually done by now
+  for (std::size_t l = 0; l < count; ++l) any_active |= w.active[l];
+  if (!any_active) return;
   std::array<std::uint8_t, kBatchLanes> active, leaves;
   std::size_t left = 0;
+  // t off [0, 1] (NaN included), or refined to a finite distance beyond the tolerance.
   for (std::size_t l = 0; l < count; ++l) {
-    const double t = w.t_algebraic[l];
-    const bool refined_off = t >= 0.0 && t <= 1.0 && std::isfinite(w.distance[l]) && w.distance[l] > tolerance;
-    leaves[l] = w.active[l] && !w.drops[l] && (!std::isfinite(t) || !(t >= 0.0 && t <= 1.0) || refined_off);
+    const double t = w.t_algebraic[l], d = w.distance[l];
+    const bool inside = (t >= 0.0) & (t <= 1.0);
+    const bool beyond = (d > tolerance) & (d <= std::numeric_limits<double>::max());
+    leaves[l] = w.active[l] & !w.drops[l] & (!inside | beyond);
     left += leaves[l];
   }
   if (left == 0) return;

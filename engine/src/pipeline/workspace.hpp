@@ -38,8 +38,6 @@ struct BatchWorkspace {
   std::array<double, 2 * kBatchLanes> estimate;
   // The formula path (formula_path.hpp): the lane's t_algebraic is the formula's, not the seed's.
   std::array<std::uint8_t, kBatchLanes> from_formula;
-  // Lanes the off-curve path has looked at (fast_path clears it): it does not look at one twice.
-  std::array<std::uint8_t, kBatchLanes> off_curve_tried;
   // The gap pass (fast_path.cpp): its lanes compacted, gap lane k being batch lane gap_lane_of[k],
   // and the full kernel's outputs for them before they go back to their lanes.
   std::vector<double> gap_B = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
@@ -50,6 +48,8 @@ struct BatchWorkspace {
   std::array<std::uint8_t, kBatchLanes> gap_lane_of;
   // The lanes left for the SVD path, compacted to the front: compact lane k is batch lane lane_of[k].
   std::array<std::uint8_t, kBatchLanes> lane_of;
+  // Lanes the off-curve path has looked at (fast_path clears it): it does not look at one twice.
+  std::array<std::uint8_t, kBatchLanes> off_curve_tried;
 };
 
 // This thread's workspace.
