@@ -28,6 +28,9 @@ inline constexpr double kOffCurvePathMaxCoordinate = 1e6;
 // is within ~n eps of the true one (normalized coordinates), far below kIsolationMargin.
 inline double off_curve_radius(double tolerance) { return tolerance * (1 + kIsolationMargin) + kIsolationMargin; }
 
+// For every active lane it has not looked at before (w.off_curve_tried, which it sets): the fast
+// path calls it for the lanes it would leave, before its own per-lane loop, and invert_batch for
+// whatever the fast path left after.
 void off_curve_path(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
                     PointResult* results, StageClock& clock);
 
