@@ -29,6 +29,32 @@ kernels::NewtonSettings settings_for_test() {
   return {kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep, kNewtonMaxHalvings, kNewtonFinalStep};
 }
 
+// 37 points of the plan's curve, on it or moved off it by 1e-1..1e-9, and a start for Newton each:
+// near the answer, anywhere, or (with `at_ends`) exactly at an end of the segment.
+struct NewtonLanes {
+  std::vector<double> u, v, t;
+};
+NewtonLanes random_lanes(const detail::PlanData& plan, std::mt19937_64& rng, bool at_ends) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1.0, 1.0);
+  NewtonLanes lanes;
+  for (int k = 0; k < 37; ++k) {
+    const double t_true = unit(rng);
+    const auto p = plan.normalized_point(t_true);
+    const double noise = k % 3 == 0 ? 0.0 : std::pow(10.0, -1.0 - k % 9);
+    lanes.u.push_back(p[0] + noise * coordinate(rng));
+    lanes.v.push_back(p[1] + noise * coordinate(rng));
+    double start;
+    if (k % 5 == 0)
+      start = unit(rng);
+    else if (at_ends && k % 7 == 0)
+      start = static_cast<double>(k % 2);
+    else
+      start = t_true + 1e-3 * coordinate(rng);
+    lanes.t.push_back(std::clamp(start, 0.0, 1.0));
+  }
+  return lanes;
+}
+
 // Horner's rule (curve_jet_horner, for the stationarity test) against de Casteljau (curve_jet):
 // the same jet to the rounding of either, at every degree, over the whole segment.
 TEST(Refine, HornersJetIsDeCasteljausToRounding) {
@@ -53,29 +79,17 @@ TEST(Refine, HornersJetIsDeCasteljausToRounding) {
 }
 
 TEST(Refine, KernelGivesTheScalarRefinementsBits) {
-  const kernels::NewtonSettings settings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep, kNewtonMaxHalvings,
-                                         kNewtonFinalStep};
+  const kernels::NewtonSettings settings = settings_for_test();
   for (const kernels::Implementation* implementation : kernels::available_implementations()) {
     std::mt19937_64 rng(42);
-    std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1.0, 1.0);
     int compared = 0, line_searches = 0;
     for (int n = 1; n <= 24; ++n)
       for (bool common : {true, false}) {
         // refine_parameter reads only the degree and the four polynomials
         const detail::PlanData plan = test_support::random_polynomials_plan(n, common, rng);
-        std::vector<double> u, v, t, distance;
-        for (int k = 0; k < 37; ++k) {
-          const double t_true = unit(rng);
-          const auto p = plan.normalized_point(t_true);
-          const double noise = k % 3 == 0 ? 0.0 : std::pow(10.0, -1.0 - k % 9);
-          u.push_back(p[0] + noise * coordinate(rng));
-          v.push_back(p[1] + noise * coordinate(rng));
-          // Near the answer, anywhere, or exactly at an end.
-          t.push_back(k % 5 == 0 ? unit(rng) : k % 7 == 0 ? static_cast<double>(k % 2) : t_true + 1e-3 * coordinate(rng));
-          t.back() = std::clamp(t.back(), 0.0, 1.0);
-        }
-        std::vector<double> start = t;
-        distance.assign(t.size(), 0.0);
+        auto [u, v, t] = random_lanes(plan, rng, /*at_ends=*/true);
+        const std::vector<double> start = t;
+        std::vector<double> distance(t.size(), 0.0);
         const kernels::RationalCurve curve{n, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(), plan.y_den.data()};
         implementation->rational_newton(curve, settings, t.size(), u.data(), v.data(), t.data(), distance.data());
         for (std::size_t l = 0; l < t.size(); ++l) {
@@ -99,23 +113,14 @@ TEST(Refine, KernelGivesTheScalarRefinementsBits) {
 TEST(Refine, KernelOnHornersJetsEndsWhereTheScalarRefinementDoes) {
   for (const kernels::Implementation* implementation : kernels::available_implementations()) {
     std::mt19937_64 rng(43);
-    std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1.0, 1.0);
     int compared = 0, stationary = 0;
     for (int n = 1; n <= 24; ++n)
       for (bool common : {true, false}) {
         detail::PlanData plan = test_support::random_polynomials_plan(n, common, rng);
         detail::horner_coefficients(plan);
-        std::vector<double> u, v, t, distance;
-        for (int k = 0; k < 37; ++k) {
-          const double t_true = unit(rng);
-          const auto p = plan.normalized_point(t_true);
-          const double noise = k % 3 == 0 ? 0.0 : std::pow(10.0, -1.0 - k % 9);
-          u.push_back(p[0] + noise * coordinate(rng));
-          v.push_back(p[1] + noise * coordinate(rng));
-          t.push_back(std::clamp(k % 5 == 0 ? unit(rng) : t_true + 1e-3 * coordinate(rng), 0.0, 1.0));
-        }
+        auto [u, v, t] = random_lanes(plan, rng, /*at_ends=*/false);
         const std::vector<double> start = t;
-        distance.assign(t.size(), 0.0);
+        std::vector<double> distance(t.size(), 0.0);
         kernels::RationalCurve curve{n, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(), plan.y_den.data()};
         curve.horner = plan.horner.data();
         implementation->rational_newton(curve, settings_for_test(), t.size(), u.data(), v.data(), t.data(),
