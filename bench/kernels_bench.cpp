@@ -1,11 +1,15 @@
 // The lane-batched kernels (kernels/batch.hpp) per implementation and size, against Eigen's
-// fixed-size SelfAdjointEigenSolver one matrix at a time. Each benchmark cycles over kDistinct
+// fixed-size SelfAdjointEigenSolver one matrix at a time; Newton's method and the slope per
+// implementation and degree. Each benchmark cycles over kDistinct
 // matrices in batches of kBatch, so the inputs are not cache-hot (Ceres *_benchmark.cc style).
 // items_per_second = matrices per second.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <random>
 #include <string>
@@ -155,6 +159,94 @@ void BM_KernelBezoutSeed(benchmark::State& state, const Implementation* impl, in
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
 }
 
+// Newton's method and the slope on curves: kDistinct / kBatch random rational Bezier curves of
+// degree n (control points in [-1, 1]^2, weights in [0.5, 2], one denominator), kBatch points per
+// curve moved off it by up to 1e-2 in each coordinate, each started 1e-2 from its own t: the
+// off-curve path's case. Horner's coefficients (RationalCurve::horner) as the engine's plan lays
+// them out.
+struct CurveInputs {
+  int n;
+  std::vector<std::vector<double>> x_num, x_den, y_num, y_den, horner;
+  std::vector<std::vector<double>> u, v, t;
+
+  explicit CurveInputs(int n_) : n(n_) {
+    std::mt19937_64 rng(7 + n);
+    std::uniform_real_distribution<double> coordinate(-1.0, 1.0), weight(0.5, 2.0), unit(0.0, 1.0);
+    const auto binomial = [](int m, int i) {
+      double b = 1;
+      for (int k = 1; k <= i; ++k) b = b * (m - i + k) / k;
+      return b;
+    };
+    const auto bernstein_sum = [&](const std::vector<double>& c, double t) {  // sum c_i C(n,i) (1-t)^(n-i) t^i
+      double sum = 0;
+      for (int i = 0; i <= n; ++i) sum += c[i] * binomial(n, i) * std::pow(1 - t, n - i) * std::pow(t, i);
+      return sum;
+    };
+    for (std::size_t b = 0; b < kDistinct / kBatch; ++b) {
+      std::vector<double> xn, w, yn;
+      for (int i = 0; i <= n; ++i) {
+        const double wi = weight(rng);
+        xn.push_back(wi * coordinate(rng)), yn.push_back(wi * coordinate(rng)), w.push_back(wi);
+      }
+      std::vector<double> h;
+      for (const std::vector<double>* c : {&xn, &w, &yn, &w}) {
+        const std::vector<double>& p = *c;
+        for (int i = 0; i <= n; ++i) h.push_back(p[i] * binomial(n, i));
+        for (int i = 0; i < n; ++i) h.push_back(n * (p[i + 1] - p[i]) * binomial(n - 1, i));
+        for (int i = 0; i + 1 < n; ++i) h.push_back(n * (n - 1.0) * (p[i + 2] - 2 * p[i + 1] + p[i]) * binomial(n - 2, i));
+      }
+      std::vector<double> us, vs, ts;
+      for (std::size_t l = 0; l < kBatch; ++l) {
+        const double at = unit(rng), den = bernstein_sum(w, at);
+        us.push_back(bernstein_sum(xn, at) / den + 1e-2 * coordinate(rng));
+        vs.push_back(bernstein_sum(yn, at) / den + 1e-2 * coordinate(rng));
+        ts.push_back(std::clamp(at + 1e-2 * coordinate(rng), 0.0, 1.0));
+      }
+      x_num.push_back(xn), x_den.push_back(w), y_num.push_back(yn), y_den.push_back(w), horner.push_back(h);
+      u.push_back(us), v.push_back(vs), t.push_back(ts);
+    }
+  }
+  RationalCurve curve(std::size_t b, bool by_horner) const {
+    return {n, x_num[b].data(), x_den[b].data(), y_num[b].data(), y_den[b].data(),
+            by_horner ? horner[b].data() : nullptr};
+  }
+};
+
+const CurveInputs& curve_inputs(int n) {
+  static std::vector<std::unique_ptr<CurveInputs>> cache(kMaxBatchSize + 1);
+  if (!cache[n]) cache[n] = std::make_unique<CurveInputs>(n);
+  return *cache[n];
+}
+
+// items_per_second = points refined per second.
+void BM_KernelRationalNewton(benchmark::State& state, const Implementation* impl, int n, bool by_horner) {
+  const CurveInputs& in = curve_inputs(n);
+  const NewtonSettings settings{60, 0.125, 1e-6, 40, 1e-12};  // the engine's (tolerances.hpp)
+  std::vector<double> t(kBatch), distance(kBatch);
+  std::size_t b = 0;
+  for (auto _ : state) {
+    t = in.t[b];
+    impl->rational_newton(in.curve(b, by_horner), settings, kBatch, in.u[b].data(), in.v[b].data(), t.data(),
+                          distance.data());
+    benchmark::DoNotOptimize(distance.data());
+    b = (b + 1) % in.t.size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+}
+
+// items_per_second = parameters evaluated per second.
+void BM_KernelRationalSlope(benchmark::State& state, const Implementation* impl, int n) {
+  const CurveInputs& in = curve_inputs(n);
+  std::vector<double> x(kBatch), y(kBatch), dx(kBatch), dy(kBatch);
+  std::size_t b = 0;
+  for (auto _ : state) {
+    impl->rational_slope(in.curve(b, true), kBatch, in.t[b].data(), x.data(), y.data(), dx.data(), dy.data());
+    benchmark::DoNotOptimize(dx.data());
+    b = (b + 1) % in.t.size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+}
+
 // The baseline: Eigen's fixed-size self-adjoint eigensolver, one matrix per call.
 template <int N>
 void BM_KernelEigenSelfAdjoint(benchmark::State& state) {
@@ -203,6 +295,17 @@ int register_kernels() {
       if (takes(n, kBezoutMatrixMinSize, kBezoutMatrixMaxSize))
         benchmark::RegisterBenchmark(benchmark_name("BM_KernelBezoutMatrix", impl, n).c_str(),
                                      BM_KernelBezoutMatrix, impl, n);
+    }
+  // Newton's method with its jets by de Casteljau (the fast path's) and by Horner's rule (the
+  // off-curve path's), and the slope, at the pipeline's benchmark degrees.
+  for (const Implementation* impl : available_implementations())
+    for (int n : {2, 3, 4, 5, 6, 8, 15, 20}) {
+      benchmark::RegisterBenchmark(benchmark_name("BM_KernelRationalNewton_casteljau", impl, n).c_str(),
+                                   BM_KernelRationalNewton, impl, n, false);
+      benchmark::RegisterBenchmark(benchmark_name("BM_KernelRationalNewton_horner", impl, n).c_str(),
+                                   BM_KernelRationalNewton, impl, n, true);
+      benchmark::RegisterBenchmark(benchmark_name("BM_KernelRationalSlope", impl, n).c_str(), BM_KernelRationalSlope,
+                                   impl, n);
     }
   // The seed, B stored or formed, at every size around the engine's switch between them
   // (kFormedBMinDegree in engine/src/invert.cpp), where each is compiled.
