@@ -211,24 +211,34 @@ CurveJet curve_jet_horner(const PlanData& plan, double t) { return horner_jet<tr
 
 CurveJet curve_slope_horner(const PlanData& plan, double t) { return horner_jet<false>(plan, t); }
 
+namespace {
+// cos(P - P0, P') <= kStationaryCosine, from P = (x, y) and P' = (dx, dy).
+bool stationary_slope(double x, double y, double dx, double dy, double u0, double v0, double distance) {
+  const double along = (x - u0) * dx + (y - v0) * dy;
+  return std::abs(along) <= kStationaryCosine * distance * length(dx, dy);
+}
+}  // namespace
+
 bool stationary_point(const PlanData& plan, double u0, double v0, double t, double distance) {
   const CurveJet jet = curve_slope_horner(plan, t);
-  const double along = (jet.x - u0) * jet.dx + (jet.y - v0) * jet.dy;
-  return std::abs(along) <= kStationaryCosine * distance * length(jet.dx, jet.dy);
+  return stationary_slope(jet.x, jet.y, jet.dx, jet.dy, u0, v0, distance);
 }
 
 void stationary_point_lanes(const PlanData& plan, std::size_t count, const double* u, const double* v,
                             const double* t, const double* distance, std::uint8_t* stationary) {
-  // P and P' of every lane by the kernels' copy of curve_slope_horner (the same doubles), then
-  // stationary_point's test on them.
-  count = std::min(count, kMaxStationaryLanes);
-  std::array<double, kMaxStationaryLanes> x, y, dx, dy;
+  // P and P' of the lanes by the kernels' copy of curve_slope_horner (the same doubles), a chunk of
+  // them at a time, then stationary_point's test on them.
+  constexpr std::size_t kChunk = 64;
+  std::array<double, kChunk> x, y, dx, dy;
   kernels::RationalCurve curve = kernel_curve(plan);
   curve.horner = plan.horner.data();
-  kernels::active_implementation().rational_slope(curve, count, t, x.data(), y.data(), dx.data(), dy.data());
-  for (std::size_t l = 0; l < count; ++l) {
-    const double along = (x[l] - u[l]) * dx[l] + (y[l] - v[l]) * dy[l];
-    stationary[l] = std::abs(along) <= kStationaryCosine * distance[l] * length(dx[l], dy[l]);
+  for (std::size_t first = 0; first < count; first += kChunk) {
+    const std::size_t lanes = std::min(kChunk, count - first);
+    kernels::active_implementation().rational_slope(curve, lanes, t + first, x.data(), y.data(), dx.data(), dy.data());
+    for (std::size_t k = 0; k < lanes; ++k) {
+      const std::size_t l = first + k;
+      stationary[l] = stationary_slope(x[k], y[k], dx[k], dy[k], u[l], v[l], distance[l]);
+    }
   }
 }
 

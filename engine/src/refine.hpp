@@ -52,11 +52,10 @@ Refined refine_parameter(const PlanData& plan, double u0, double v0, double t0, 
 // Whether t is a stationary point of the distance to (u0, v0), `distance` = |P(t) - P0|:
 // cos(P(t) - P0, P'(t)) <= kStationaryCosine (a refinement may also stop on its iteration cap).
 bool stationary_point(const PlanData& plan, double u0, double v0, double t, double distance);
-// The same test for `count` points at once (count <= kMaxStationaryLanes): stationary[l] = 1 where
-// stationary_point(plan, u[l], v[l], t[l], distance[l]) holds, 0 elsewhere, on the same doubles
-// from the kernels' rational_slope (Horner's rule is a chain of dependent steps per point: across
-// SIMD lanes its latency is hidden).
-inline constexpr std::size_t kMaxStationaryLanes = 64;
+// The same test for `count` points at once: stationary[l] = 1 where stationary_point(plan, u[l],
+// v[l], t[l], distance[l]) holds, 0 elsewhere, on the same doubles from the kernels'
+// rational_slope (Horner's rule is a chain of dependent steps per point: across SIMD lanes its
+// latency is hidden).
 void stationary_point_lanes(const PlanData& plan, std::size_t count, const double* u, const double* v,
                             const double* t, const double* distance, std::uint8_t* stationary);
 

@@ -190,7 +190,7 @@ TEST(Refine, StationaryPointLanesAnswersAsStationaryPointDoes) {
       detail::PlanData plan = test_support::random_polynomials_plan(n, common, rng);
       detail::horner_coefficients(plan);
       std::vector<double> u, v, t, distance;
-      for (std::size_t k = 0; k < detail::kMaxStationaryLanes; ++k) {
+      for (std::size_t k = 0; k < 64; ++k) {  // a batch of lanes
         const auto p = plan.normalized_point(unit(rng));
         u.push_back(p[0] + 1e-2 * coordinate(rng));
         v.push_back(p[1] + 1e-2 * coordinate(rng));

@@ -116,7 +116,6 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
   //    nearest point already: the isolation certificate proves it at once near one branch, the
   //    search over the pieces elsewhere), then the extension.
   std::array<std::uint8_t, kBatchLanes> stationary;
-  static_assert(kBatchLanes <= kMaxStationaryLanes);
   stationary_point_lanes(plan, m, u.data(), v.data(), t.data(), distance.data(), stationary.data());
   for (std::size_t k = 0; k < m; ++k) {
     const NearestOnSegment nearest = certified_nearest_on_segment(plan, u[k], v[k], t[k], distance[k], stationary[k]);

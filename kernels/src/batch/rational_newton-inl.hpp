@@ -184,49 +184,73 @@ struct HornerCurve {
         out[p] = hn::Add(hn::Mul(out[p], r), hn::IfThenElse(low, hn::Set(d, c[p][m - k]), hn::Set(d, c[p][k])));
   }
 
-  // r, and base^n, base^(n-1), base^(n-2) (base = 1 - t, or t above 1/2).
+  // r, and whether the lane is in the lower half (r = t / (1-t) there).
   template <class D, class V = hn::Vec<D>>
-  HWY_INLINE hn::Mask<D> ratio(D d, const V& t, V& r, V powers[3]) const {
-    const int n = curve.degree;
-    const V one = hn::Set(d, 1.0), s = hn::Sub(one, t);
+  HWY_INLINE hn::Mask<D> ratio(D d, const V& t, V& r) const {
+    const V s = hn::Sub(hn::Set(d, 1.0), t);
     const hn::Mask<D> low = hn::Le(t, hn::Set(d, 0.5));
     r = hn::Div(hn::IfThenElse(low, t, s), hn::IfThenElse(low, s, t));
-    const V base = hn::IfThenElse(low, s, t);
-    V base_n2 = one;
-    for (int k = 2; k < n; ++k) base_n2 = hn::Mul(base_n2, base);
-    powers[2] = base_n2;
-    powers[1] = n >= 2 ? hn::Mul(base_n2, base) : one;
-    powers[0] = n >= 2 ? hn::Mul(powers[1], base) : base;
     return low;
   }
 
-  template <class D, class V = hn::Vec<D>>
-  HWY_INLINE void jet(D d, const V& t, V& x, V& dx, V& ddx, V& y, V& dy, V& ddy) const {
-    V r, powers[3], value[3][4];
-    const hn::Mask<D> low = ratio(d, t, r, powers);
-    const V zero = hn::Zero(d), two = hn::Set(d, 2.0);
-    for (int j = 0; j < 3; ++j) {
-      if (j > curve.degree) {
-        for (int p = 0; p < 4; ++p) value[j][p] = zero;
+  // Levels 0 .. kLevels - 1 of the four polynomials at t, each times its factor base^m (base^n,
+  // base^(n-1), base^(n-2); base = 1 - t, or t above 1/2); a level the degree does not have, 0.
+  template <int kLevels, class D, class V = hn::Vec<D>>
+  HWY_INLINE void levels(D d, const V& t, V value[kLevels][4]) const {
+    const int n = curve.degree;
+    V r;
+    const hn::Mask<D> low = ratio(d, t, r);
+    const V one = hn::Set(d, 1.0), base = hn::IfThenElse(low, hn::Sub(one, t), t);
+    V base_n2 = one;
+    for (int k = 2; k < n; ++k) base_n2 = hn::Mul(base_n2, base);
+    const V base_n1 = n >= 2 ? hn::Mul(base_n2, base) : one;
+    const V powers[3] = {n >= 2 ? hn::Mul(base_n1, base) : base, base_n1, base_n2};
+    for (int j = 0; j < kLevels; ++j) {
+      if (j > n) {
+        for (int p = 0; p < 4; ++p) value[j][p] = hn::Zero(d);
         continue;
       }
       level(d, j, r, low, value[j]);
       for (int p = 0; p < 4; ++p) value[j][p] = hn::Mul(value[j][p], powers[j]);
     }
-    const auto quotient = [&](int num, int den, V& q, V& dq, V& ddq) {
-      q = hn::Div(value[0][num], value[0][den]);
-      dq = hn::Div(hn::Sub(value[1][num], hn::Mul(value[1][den], q)), value[0][den]);
-      ddq = hn::Div(hn::Sub(hn::Sub(value[2][num], hn::Mul(hn::Mul(two, value[1][den]), dq)), hn::Mul(value[2][den], q)),
-                    value[0][den]);
+  }
+
+  // x = num / den and x' = (num' - den' x) / den from the levels, polynomials num and den.
+  template <class V>
+  static HWY_INLINE void quotient(const V value[][4], int num, int den, V& q, V& dq) {
+    q = hn::Div(value[0][num], value[0][den]);
+    dq = hn::Div(hn::Sub(value[1][num], hn::Mul(value[1][den], q)), value[0][den]);
+  }
+
+  // P and P' (the engine's curve_slope_horner).
+  template <class D, class V = hn::Vec<D>>
+  HWY_INLINE void slope(D d, const V& t, V& x, V& dx, V& y, V& dy) const {
+    V value[2][4];
+    levels<2>(d, t, value);
+    quotient(value, 0, 1, x, dx);
+    quotient(value, 2, 3, y, dy);
+  }
+
+  // P, P', P'' (the engine's curve_jet_horner): x'' = (num'' - 2 den' x' - den'' x) / den.
+  template <class D, class V = hn::Vec<D>>
+  HWY_INLINE void jet(D d, const V& t, V& x, V& dx, V& ddx, V& y, V& dy, V& ddy) const {
+    V value[3][4];
+    levels<3>(d, t, value);
+    const V two = hn::Set(d, 2.0);
+    const auto second = [&](int num, int den, const V& q, const V& dq) {
+      return hn::Div(hn::Sub(hn::Sub(value[2][num], hn::Mul(hn::Mul(two, value[1][den]), dq)), hn::Mul(value[2][den], q)),
+                     value[0][den]);
     };
-    quotient(0, 1, x, dx, ddx);
-    quotient(2, 3, y, dy, ddy);
+    quotient(value, 0, 1, x, dx);
+    ddx = second(0, 1, x, dx);
+    quotient(value, 2, 3, y, dy);
+    ddy = second(2, 3, y, dy);
   }
 
   template <class D, class V = hn::Vec<D>>
   HWY_INLINE V distance(D d, const V& u, const V& v, const V& t, hn::Mask<D>& plain) const {
-    V r, powers[3], value[4];
-    const hn::Mask<D> low = ratio(d, t, r, powers);
+    V r, value[4];
+    const hn::Mask<D> low = ratio(d, t, r);
     level(d, 0, r, low, value);
     // The common factor base^n cancels in the quotients.
     return plain_length(hn::Sub(hn::Div(value[0], value[1]), u), hn::Sub(hn::Div(value[2], value[3]), v), plain);
@@ -407,8 +431,7 @@ void rational_newton_batch(const RationalCurve& curve, const NewtonSettings& set
   });
 }
 
-// P and P' by Horner's rule, lane by lane as the engine's curve_slope_horner (levels 0 and 1 of
-// HornerCurve, each times its power of the base, then the quotients).
+// P and P' by Horner's rule (HornerCurve::slope), lane by lane as the engine's curve_slope_horner.
 void rational_slope_batch(const RationalCurve& curve, std::size_t count, const double* t, double* x, double* y,
                           double* dx, double* dy) {
   check_size<kRationalNewtonMinDegree, kRationalNewtonMaxDegree>("rational_slope", curve.degree);
@@ -427,15 +450,8 @@ void rational_slope_batch(const RationalCurve& curve, std::size_t count, const d
       for (std::size_t l = 0; l < L; ++l) buffer[l] = l < lanes ? t[first + l] : 0.0;
       at = hn::Load(d, buffer);
     }
-    V r, powers[3], value[2][4];
-    const hn::Mask<D> low = horner.ratio(d, at, r, powers);
-    for (int level = 0; level < 2; ++level) {
-      horner.level(d, level, r, low, value[level]);
-      for (int p = 0; p < 4; ++p) value[level][p] = hn::Mul(value[level][p], powers[level]);
-    }
-    const V px = hn::Div(value[0][0], value[0][1]), py = hn::Div(value[0][2], value[0][3]);
-    const V pdx = hn::Div(hn::Sub(value[1][0], hn::Mul(value[1][1], px)), value[0][1]);
-    const V pdy = hn::Div(hn::Sub(value[1][2], hn::Mul(value[1][3], py)), value[0][3]);
+    V px, pdx, py, pdy;
+    horner.slope(d, at, px, pdx, py, pdy);
     const V* outputs[4] = {&px, &py, &pdx, &pdy};
     double* targets[4] = {x, y, dx, dy};
     for (int k = 0; k < 4; ++k) {
