@@ -165,6 +165,69 @@ void order_by_far_radius(OffCurveData& data) {
   data.extension_far2 = std::move(far2);
 }
 
+// The grid of ExtensionGrid (plan_data.hpp). A piece's box and its far radius R each bound
+// the distance from every point of a cell to the piece: by the distance between the cell and the
+// box, and by R less the cell's corner farthest from the origin (|P - P0| >= |P| - |P0|). The cell
+// keeps the least over the pieces of the larger of the two, so that a point of it whose radius is
+// below that value would pass, piece by piece, the very tests extension_clear makes. In squares,
+// so that the pieces' loop takes no square root: it runs once per plan, pieces x cells.
+void make_extension_grid(const PlanData& plan, const OffCurveData& data, ExtensionGrid& grid) {
+  constexpr int G = kExtensionGrid;
+  const std::vector<double>& samples = plan.nearest_samples;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::array<double, 2> low{inf, inf}, high{-inf, -inf};
+  for (std::size_t k = 0; k + 1 < samples.size(); k += 2)
+    for (int axis = 0; axis < 2; ++axis) {
+      low[axis] = std::min(low[axis], samples[k + axis]);
+      high[axis] = std::max(high[axis], samples[k + axis]);
+    }
+  const double side =
+      std::max(high[0] - low[0], high[1] - low[1]) + 2 * kExtensionGridMargin * plan.normalized_diagonal;
+  if (!std::isfinite(side) || !(side > 0)) return;
+  const double cell = side / G;
+  grid.u = 0.5 * (low[0] + high[0]) - 0.5 * side;
+  grid.v = 0.5 * (low[1] + high[1]) - 0.5 * side;
+  grid.inverse_cell = 1.0 / cell;
+  // The cells' edges, each cell widened by a millionth of its side: a point that the index's
+  // arithmetic rounds into the next cell is still inside the one whose value it reads.
+  const double pad = 1e-6 * cell;
+  std::array<double, G> u0, u1, v0, v1;
+  for (int i = 0; i < G; ++i) {
+    u0[i] = grid.u + i * cell - pad, u1[i] = grid.u + (i + 1) * cell + pad;
+    v0[i] = grid.v + i * cell - pad, v1[i] = grid.v + (i + 1) * cell + pad;
+  }
+  std::array<double, G * G> corner;  // the distance of each cell's farthest corner from the origin
+  for (int j = 0; j < G; ++j)
+    for (int i = 0; i < G; ++i) {
+      const double x = std::max(std::abs(u0[i]), std::abs(u1[i])), y = std::max(std::abs(v0[j]), std::abs(v1[j]));
+      corner[j * G + i] = std::sqrt(x * x + y * y);
+    }
+  std::vector<double> clear2(static_cast<std::size_t>(G) * G, inf);
+  const std::size_t pieces = data.extension_far2.size();
+  std::array<double, G> dx2, dy2;
+  for (std::size_t piece = 0; piece < pieces; ++piece) {
+    const double* box = data.extension_boxes.data() + 4 * piece;
+    const double far2 = data.extension_far2[piece], far = far2 > 0 ? std::sqrt(far2) : 0.0;  // NaN: none
+    const bool boxed = box[0] == box[0];  // NaN: the box does not hold the piece
+    for (int i = 0; i < G; ++i) {
+      const double dx = boxed ? std::max({box[0] - u1[i], u0[i] - box[1], 0.0}) : 0.0;
+      const double dy = boxed ? std::max({box[2] - v1[i], v0[i] - box[3], 0.0}) : 0.0;
+      dx2[i] = dx * dx, dy2[i] = dy * dy;
+    }
+    for (int j = 0; j < G; ++j)
+      for (int i = 0; i < G; ++i) {
+        const double by_radius = far - corner[j * G + i], by_radius2 = by_radius > 0 ? by_radius * by_radius : 0.0;
+        const double by_box2 = dx2[i] + dy2[j], bound2 = by_box2 > by_radius2 ? by_box2 : by_radius2;
+        double& value = clear2[static_cast<std::size_t>(j) * G + i];
+        value = bound2 < value ? bound2 : value;
+      }
+  }
+  // Those sums, products and square roots round: a part in 1e9 below them is safely below the
+  // exact values.
+  for (double& value : clear2) value = std::sqrt(value) * (1.0 - 1e-9);
+  grid.clear = std::move(clear2);
+}
+
 }  // namespace
 
 void extension_pieces(const PlanData& plan, OffCurveData& data) {
@@ -227,10 +290,18 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
   order_by_far_radius(data);
 }
 
-bool extension_clear(const PlanData& plan, double u0, double v0, double radius) {
+const ExtensionGrid* extension_grid(const PlanData& plan, std::size_t proofs, bool force) {
+  if (const ExtensionGrid* grid = plan.extension_grid.if_made()) return grid;
+  if (!force && plan.extension_proofs.add(proofs) < kExtensionGridAfter) return nullptr;
+  const OffCurveData& data = off_curve_data(plan);
+  return &plan.extension_grid.get([&](ExtensionGrid& grid) { make_extension_grid(plan, data, grid); });
+}
+
+bool extension_clear(const PlanData& plan, double u0, double v0, double radius, const ExtensionGrid* grid) {
   const OffCurveData& data = off_curve_data(plan);
   const int m = data.extension_degree;
   if (m == 0 || !std::isfinite(u0) || !std::isfinite(v0) || !(radius >= 0)) return false;
+  if (grid && grid_clears(*grid, u0, v0, radius)) return true;  // most points
   const double radius2 = radius * radius;
   const double c = u0 * u0 + v0 * v0 - radius2, c_bound = u0 * u0 + v0 * v0 + radius2;
   const double gamma = kStationarySignUlps * (m + 1) * kEpsilon;

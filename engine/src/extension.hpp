@@ -30,6 +30,8 @@
 // clears with one: make_plan finds a radius R about the origin it stays outside (H0 - R^2 Hw
 // has positive coefficients), and |P - P0| >= R - |P0|. A piece none of these clears is halved
 // (de Casteljau) a few times per point.
+#include <cstddef>
+
 #include "plan_data.hpp"
 
 namespace bezinv::detail {
@@ -43,6 +45,13 @@ inline constexpr int kExtensionMaxPlanHalvings = 5;
 inline constexpr double kExtensionBoxRatio = 0.25;
 // How many times a piece that is not yet clear may be halved for one point.
 inline constexpr int kExtensionMaxHalvings = 8;
+// The grid that clears most points before any piece is looked at (a point otherwise scans the
+// pieces whose far radius it is within, 5-40 of them near the curve, each a box test whose branch
+// mispredicts): cells per side, how far beyond the segment's samples it reaches (in diagonals),
+// and after how many proofs on a plan it is built (it costs about as much as that many scans).
+inline constexpr int kExtensionGrid = 32;
+inline constexpr double kExtensionGridMargin = 0.25;
+inline constexpr std::size_t kExtensionGridAfter = 512;
 
 // Fills plan.extension_degree, extension_h, extension_scale, extension_boxes and extension_far2
 // (degree >= 2).
@@ -51,6 +60,20 @@ void extension_pieces(const PlanData& plan, OffCurveData& data);
 // Whether no point of the curve with t outside [0, 1] (nor at t = infinity) is within `radius` of
 // (u0, v0), normalized coordinates. False when it cannot tell (a piece still undecided after
 // kExtensionMaxHalvings halvings, a coefficient within its rounding) as well as when one is.
-bool extension_clear(const PlanData& plan, double u0, double v0, double radius);
+// With `grid` (extension_grid), a point whose cell clears it returns at once; the answer is the
+// one the pieces give, but where they cannot tell.
+bool extension_clear(const PlanData& plan, double u0, double v0, double radius, const ExtensionGrid* grid = nullptr);
+
+// Whether the point's cell of the grid proves it clear: a point outside the grid, or a NaN, is not.
+inline bool grid_clears(const ExtensionGrid& grid, double u0, double v0, double radius) {
+  if (grid.clear.empty()) return false;
+  const double gu = (u0 - grid.u) * grid.inverse_cell, gv = (v0 - grid.v) * grid.inverse_cell;
+  return gu >= 0 && gu < kExtensionGrid && gv >= 0 && gv < kExtensionGrid &&
+         radius < grid.clear[static_cast<std::size_t>(gv) * kExtensionGrid + static_cast<std::size_t>(gu)];
+}
+
+// The plan's grid, counting `proofs` more extension proofs on it: null until kExtensionGridAfter
+// have been counted, then made (once) and returned; `force` makes it at once.
+const ExtensionGrid* extension_grid(const PlanData& plan, std::size_t proofs, bool force = false);
 
 }  // namespace bezinv::detail

@@ -9,6 +9,7 @@
 // with Bxy = Bez(W, W) = 0 when the denominators are one W (rational Bezier), so B is affine there.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -83,6 +84,31 @@ struct OffCurveData {
   std::vector<double> extension_h, extension_scale, extension_boxes, extension_far2;
 };
 
+// What clears most points of the extension at once (engine/src/extension.hpp, extension_grid):
+// per cell of a kExtensionGrid x kExtensionGrid grid over the segment's surroundings (cell (i, j)
+// from u + i / inverse_cell, v + j / inverse_cell, row-major in j) a distance within which no piece
+// of the extension comes of any point of the cell. Empty where there is no extension.
+struct ExtensionGrid {
+  double u = 0.0, v = 0.0, inverse_cell = 0.0;
+  std::vector<double> clear;
+};
+
+// A count that plans share between threads and a copy of a plan starts again at 0.
+class SharedCount {
+ public:
+  SharedCount() = default;
+  SharedCount(const SharedCount&) {}
+  SharedCount& operator=(const SharedCount&) {
+    count_.store(0, std::memory_order_relaxed);
+    return *this;
+  }
+  // The count after adding k.
+  std::size_t add(std::size_t k) const { return count_.fetch_add(k, std::memory_order_relaxed) + k; }
+
+ private:
+  mutable std::atomic<std::size_t> count_{0};
+};
+
 // The inversion formula as the formula path evaluates it (engine/src/pipeline/formula_path.hpp):
 // t = N / M with N, M sums of c_ij T_i(a) T_j(b), i + j <= degree, in the coordinates of the
 // formula's frame, a = (u - centre_u) / half_u, b = (v - centre_v) / half_v from the plan's
@@ -111,13 +137,22 @@ class Lazy {
 
   template <class Make>
   const Data& get(Make&& make) const {
-    std::call_once(slot_->once, [&] { make(slot_->data); });
+    std::call_once(slot_->once, [&] {
+      make(slot_->data);
+      slot_->made.store(true, std::memory_order_release);
+    });
     return slot_->data;
+  }
+
+  // The data if it has been made, else null (without making it).
+  const Data* if_made() const {
+    return slot_->made.load(std::memory_order_acquire) ? &slot_->data : nullptr;
   }
 
  private:
   struct Slot {
     std::once_flag once;
+    std::atomic<bool> made{false};
     Data data;
   };
   std::unique_ptr<Slot> slot_ = std::make_unique<Slot>();
@@ -191,6 +226,10 @@ struct PlanData {
 
   // What only answers off the curve use, built by the first point that asks (off_curve_data).
   Lazy<OffCurveData> off_curve;
+  // The extension's grid, built once the plan has had kExtensionGridAfter extension proofs
+  // (extension_grid): those proofs count in extension_proofs.
+  Lazy<ExtensionGrid> extension_grid;
+  SharedCount extension_proofs;
   // The curve's inversion formula, made by the first batch that takes the formula path, projects an
   // off-curve point or reports N/M unrefined (formula_path_data).
   Lazy<FormulaPathData> formula_path;

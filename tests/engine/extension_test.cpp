@@ -120,6 +120,58 @@ TEST(Extension, NeverClearWhereThePointIsWithinTheRadiusOfTheExtension) {
   EXPECT_GT(cleared_below, tried * 3 / 4);
 }
 
+// The grid (extension_grid) on the same curves and points: its cell never clears a point with
+// the radius just above the nearest point of the extension; where it clears one, the pieces do
+// too (it is only a quicker way to the pieces' own box and radius tests); and it is worth having:
+// points near the middle of the segment, off the curve by 1e-4 to 1e-1 of its size with that as
+// the radius (as off_curve_path asks), are mostly cleared by their cell alone.
+TEST(Extension, TheGridClearsOnlyWhatThePiecesClear) {
+  const std::vector<Real> ts = extension_parameters();
+  int tried = 0, by_grid = 0, middle = 0, middle_by_grid = 0;
+  for (CurveKind kind : kAllKinds)
+    for (int n : {2, 3, 5, 8, 12, 20, 32}) {
+      std::mt19937_64 rng(4099 + 31 * n + static_cast<int>(kind));
+      for (auto polygon : {datasets::ControlPolygon::perturbed_arc, datasets::ControlPolygon::unit_square}) {
+        const detail::PlanData plan = detail::plan_data(make_plan(datasets::random_curve(kind, n, rng, polygon)));
+        const detail::ExtensionGrid* grid = detail::extension_grid(plan, 0, true);
+        ASSERT_NE(grid, nullptr);
+        EXPECT_EQ(detail::extension_grid(plan, 0), grid);  // made once
+        std::vector<std::array<Real, 2>> points;
+        for (Real t : ts) points.push_back(extension_point(plan, t));
+        for (int i = 0; i < (test_support::kSanitizerTree ? 10 : 20); ++i) {
+          const bool near_middle = i % 2 == 0;
+          const Real t0 = near_middle ? datasets::uniform(rng, 0.3, 0.7) : datasets::uniform(rng, -0.6, 1.6);
+          const auto base = extension_point(plan, t0);
+          const double r = std::pow(10.0, datasets::uniform(rng, -4, near_middle ? -1 : 0)) *
+                           plan.normalized_diagonal;
+          const double angle = datasets::uniform(rng, 0.0, 6.283185307179586);
+          const double u0 = static_cast<double>(base[0]) + r * std::cos(angle), v0 = static_cast<double>(base[1]) + r * std::sin(angle);
+          const double nearest = static_cast<double>(nearest_on_grid(points, u0, v0));
+          ASSERT_TRUE(std::isfinite(nearest));
+          EXPECT_FALSE(detail::grid_clears(*grid, u0, v0, nearest * (1 + 1e-6)))
+              << to_string(kind) << " degree " << n << " t0 " << static_cast<double>(t0) << " nearest " << nearest;
+          for (double radius : {nearest * 0.99, nearest * 0.5, r}) {
+            const bool cleared = detail::grid_clears(*grid, u0, v0, radius);
+            ++tried;
+            by_grid += cleared;
+            if (cleared) {
+              EXPECT_TRUE(detail::extension_clear(plan, u0, v0, radius))
+                  << to_string(kind) << " degree " << n << " t0 " << static_cast<double>(t0) << " radius " << radius;
+            }
+            EXPECT_EQ(detail::extension_clear(plan, u0, v0, radius, grid), cleared || detail::extension_clear(plan, u0, v0, radius));
+          }
+          if (near_middle) {
+            ++middle;
+            middle_by_grid += detail::grid_clears(*grid, u0, v0, r);
+          }
+        }
+      }
+    }
+  std::printf("[ measured ] the grid cleared %d of %d tests; near the middle of the segment, %d of %d points\n", by_grid,
+              tried, middle_by_grid, middle);
+  EXPECT_GT(middle_by_grid, middle * 3 / 4);
+}
+
 // Points made on the extension from a known t (construction, rounded to doubles): within a
 // radius of a millionth of the curve's size, never clear.
 TEST(Extension, PointsOnTheExtensionAreNeverClear) {

@@ -115,11 +115,12 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
   // 3. Per lane, the proofs: the refined start as the certified search's hint (usually the
   //    nearest point already: the isolation certificate proves it at once near one branch, the
   //    search over the pieces elsewhere), then the extension.
+  const ExtensionGrid* grid = extension_grid(plan, m);
   std::array<std::uint8_t, kBatchLanes> stationary;
   stationary_point_lanes(plan, m, u.data(), v.data(), t.data(), distance.data(), stationary.data());
   for (std::size_t k = 0; k < m; ++k) {
     const NearestOnSegment nearest = certified_nearest_on_segment(plan, u[k], v[k], t[k], distance[k], stationary[k]);
-    if (!nearest.certified || !(nearest.distance > radius) || !extension_clear(plan, u[k], v[k], radius)) continue;
+    if (!nearest.certified || !(nearest.distance > radius) || !extension_clear(plan, u[k], v[k], radius, grid)) continue;
     const std::size_t l = lane_of[k];
     w.active[l] = 0;
     PointResult& r = results[l];
