@@ -137,6 +137,9 @@ class Lazy {
 
   template <class Make>
   const Data& get(Make&& make) const {
+    // Made already, the common case: one load (std::call_once costs a call per use, and the
+    // off-curve path asks several times per point).
+    if (slot_->made.load(std::memory_order_acquire)) return slot_->data;
     std::call_once(slot_->once, [&] {
       make(slot_->data);
       slot_->made.store(true, std::memory_order_release);
