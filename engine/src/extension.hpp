@@ -62,8 +62,8 @@ void extension_pieces(const PlanData& plan, OffCurveData& data);
 // Whether no point of the curve with t outside [0, 1] (nor at t = infinity) is within `radius` of
 // (u0, v0), normalized coordinates. False when it cannot tell (a piece still undecided after
 // kExtensionMaxHalvings halvings, a coefficient within its rounding) as well as when one is.
-// With `grid` (extension_grid), a point whose cell clears it returns at once; the answer is the
-// one the pieces give, but where they cannot tell.
+// With `grid` (extension_grid), a point whose cell clears it is clear at once: every piece would
+// pass its box or far-radius test, so the pieces give the same answer.
 bool extension_clear(const PlanData& plan, double u0, double v0, double radius, const ExtensionGrid* grid = nullptr);
 
 // Whether the point's cell of the grid proves it clear: a point outside the grid, or a NaN, is not.
