@@ -290,9 +290,9 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
   order_by_far_radius(data);
 }
 
-const ExtensionGrid* extension_grid(const PlanData& plan, std::size_t proofs, bool force) {
+const ExtensionGrid* extension_grid(const PlanData& plan, std::size_t lanes, bool force) {
   if (const ExtensionGrid* grid = plan.extension_grid.if_made()) return grid;
-  if (!force && plan.extension_proofs.add(proofs) < kExtensionGridAfter) return nullptr;
+  if (!force && plan.extension_lanes.add(lanes) < kExtensionGridAfter) return nullptr;
   const OffCurveData& data = off_curve_data(plan);
   return &plan.extension_grid.get([&](ExtensionGrid& grid) { make_extension_grid(plan, data, grid); });
 }

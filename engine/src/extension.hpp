@@ -30,7 +30,7 @@
 // clears with one: make_plan finds a radius R about the origin it stays outside (H0 - R^2 Hw
 // has positive coefficients), and |P - P0| >= R - |P0|. A piece none of these clears is halved
 // (de Casteljau) a few times per point. Before any piece, a grid over the segment's surroundings
-// (made once a plan has had a few hundred proofs) clears most points with one comparison: per
+// (made once a few hundred points of a plan have come this way) clears most points with one comparison: per
 // cell, the least over the pieces of what their box and far radius prove for the whole cell.
 #include <cstddef>
 
@@ -50,7 +50,8 @@ inline constexpr int kExtensionMaxHalvings = 8;
 // The grid that clears most points before any piece is looked at (a point otherwise scans the
 // pieces whose far radius it is within, 5-40 of them near the curve, each a box test whose branch
 // mispredicts): cells per side, how far beyond the segment's samples it reaches (in diagonals),
-// and after how many proofs on a plan it is built (it costs about as much as that many scans).
+// and after how many lanes of a plan have reached the off-curve path it is built (it costs about
+// as much as that many scans).
 inline constexpr int kExtensionGrid = 32;
 inline constexpr double kExtensionGridMargin = 0.25;
 inline constexpr std::size_t kExtensionGridAfter = 512;
@@ -74,8 +75,8 @@ inline bool grid_clears(const ExtensionGrid& grid, double u0, double v0, double 
          radius < grid.clear[static_cast<std::size_t>(gv) * kExtensionGrid + static_cast<std::size_t>(gu)];
 }
 
-// The plan's grid, counting `proofs` more extension proofs on it: null until kExtensionGridAfter
-// have been counted, then made (once) and returned; `force` makes it at once.
-const ExtensionGrid* extension_grid(const PlanData& plan, std::size_t proofs, bool force = false);
+// The plan's grid, counting `lanes` more lanes of the off-curve path on it: null until
+// kExtensionGridAfter have been counted, then made (once) and returned; `force` makes it at once.
+const ExtensionGrid* extension_grid(const PlanData& plan, std::size_t lanes, bool force = false);
 
 }  // namespace bezinv::detail

@@ -229,10 +229,10 @@ struct PlanData {
 
   // What only answers off the curve use, built by the first point that asks (off_curve_data).
   Lazy<OffCurveData> off_curve;
-  // The extension's grid, built once the plan has had kExtensionGridAfter extension proofs
-  // (extension_grid): those proofs count in extension_proofs.
+  // The extension's grid, built once kExtensionGridAfter lanes of the plan have reached the
+  // off-curve path (extension_grid), counted in extension_lanes.
   Lazy<ExtensionGrid> extension_grid;
-  SharedCount extension_proofs;
+  SharedCount extension_lanes;
   // The curve's inversion formula, made by the first batch that takes the formula path, projects an
   // off-curve point or reports N/M unrefined (formula_path_data).
   Lazy<FormulaPathData> formula_path;

@@ -230,8 +230,7 @@ void stationary_point_lanes(const PlanData& plan, std::size_t count, const doubl
   // them at a time, then stationary_point's test on them.
   constexpr std::size_t kChunk = 64;
   std::array<double, kChunk> x, y, dx, dy;
-  kernels::RationalCurve curve = kernel_curve(plan);
-  curve.horner = plan.horner.data();
+  const kernels::RationalCurve curve = kernel_curve(plan, /*horner=*/true);
   for (std::size_t first = 0; first < count; first += kChunk) {
     const std::size_t lanes = std::min(kChunk, count - first);
     kernels::active_implementation().rational_slope(curve, lanes, t + first, x.data(), y.data(), dx.data(), dy.data());

@@ -13,9 +13,13 @@ namespace bezinv::detail {
 inline constexpr kernels::NewtonSettings kNewtonSettings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep,
                                                          kNewtonMaxHalvings, kNewtonFinalStep};
 
-// The normalized curve as the kernels take it.
-inline kernels::RationalCurve kernel_curve(const PlanData& plan) {
-  return {plan.degree, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(), plan.y_den.data()};
+// The normalized curve as the kernels take it; with `horner`, with its Horner coefficients too
+// (plan.horner: the kernels' jets then by Horner's rule).
+inline kernels::RationalCurve kernel_curve(const PlanData& plan, bool horner = false) {
+  kernels::RationalCurve curve{plan.degree, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(),
+                               plan.y_den.data()};
+  if (horner) curve.horner = plan.horner.data();
+  return curve;
 }
 
 // P(t), P'(t), P''(t) of the normalized curve. For x = N/D:

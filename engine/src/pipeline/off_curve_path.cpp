@@ -105,8 +105,7 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
   //    Casteljau written out in registers is the faster). Their bits need not be the scalar
   //    code's: the answer is what the proofs below make of it.
   if (m > newton_from) {
-    kernels::RationalCurve curve = kernel_curve(plan);
-    if (plan.degree >= kHornerNewtonMinDegree) curve.horner = plan.horner.data();
+    const kernels::RationalCurve curve = kernel_curve(plan, plan.degree >= kHornerNewtonMinDegree);
     kernels::active_implementation().rational_newton(curve, kNewtonSettings, m - newton_from, u.data() + newton_from,
                                                      v.data() + newton_from, t.data() + newton_from,
                                                      distance.data() + newton_from);
