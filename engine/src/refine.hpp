@@ -13,6 +13,11 @@ namespace bezinv::detail {
 inline constexpr kernels::NewtonSettings kNewtonSettings{kNewtonMaxIterations, kNewtonMaxStep, kNewtonTrustedStep,
                                                          kNewtonMaxHalvings, kNewtonFinalStep};
 
+// The same safeguards for the off-curve path's Newton kernel (nearest_newton).
+inline constexpr kernels::NearestNewtonSettings kNearestNewtonSettings{kNewtonMaxIterations, kNewtonMaxStep,
+                                                                       kNewtonTrustedStep, kNewtonMaxHalvings,
+                                                                       kNearestNewtonFinalStep};
+
 // The normalized curve as the kernels take it; with `horner`, with its Horner coefficients too
 // (plan.horner: the kernels' jets then by Horner's rule).
 inline kernels::RationalCurve kernel_curve(const PlanData& plan, bool horner = false) {

@@ -1,6 +1,7 @@
-// The lane-batched nearest-point Newton (Implementation::rational_newton), every available
-// implementation, degrees 1..24, batch sizes around the vector widths, with its jets by de
-// Casteljau and by Horner's rule (RationalCurve::horner) in turn. Expected parameters come from
+// The lane-batched nearest-point Newton kernels, every available implementation, degrees 1..24,
+// batch sizes around the vector widths: Implementation::rational_newton with its jets by de
+// Casteljau and by Horner's rule (RationalCurve::horner), and the off-curve path's
+// Implementation::nearest_newton, in turn. Expected parameters come from
 // construction: points made exactly (GMP) at a known t, on the curve, along its normal, or past an
 // end along its tangent. tests/engine/refine_test.cpp checks the de Casteljau jets against the
 // engine's scalar refinement bit for bit; the Horner jets give every implementation the same bits.
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "support/bits.hpp"
@@ -25,8 +27,17 @@ using test_support::sci;
 using test_support::kNaN;
 // The engine's settings (engine/include/bezinv/tolerances.hpp).
 constexpr NewtonSettings kSettings{60, 0.125, 1e-6, 40, 1e-12};
+constexpr NearestNewtonSettings kNearestSettings{60, 0.125, 1e-6, 40, 1e-9};
 
-// A random rational Bezier curve: control points in [-1, 1]^2, weights in [0.5, 2], one denominator.
+// Which kernel a test runs: rational_newton by de Casteljau or by Horner, or nearest_newton.
+enum class Variant { casteljau, horner, nearest };
+constexpr Variant kVariants[] = {Variant::casteljau, Variant::horner, Variant::nearest};
+std::string name(Variant variant) {
+  return variant == Variant::casteljau ? "" : (variant == Variant::horner ? " Horner" : " nearest_newton");
+}
+
+// A random rational Bezier curve: control points in [-1, 1]^2, weights in [0.5, 2], one denominator
+// (or with `separate`, x and y each their own).
 struct TestCurve {
   std::vector<double> x_num, x_den, y_num, y_den;
   exact::RationalCurve exact;
@@ -55,16 +66,16 @@ std::vector<double> horner_layout(int n, const std::vector<const std::vector<dou
   return out;
 }
 
-TestCurve random_curve(int n, std::mt19937_64& rng) {
+TestCurve random_curve(int n, std::mt19937_64& rng, bool separate = false) {
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0), weight(0.5, 2.0);
   TestCurve c;
   for (int i = 0; i <= n; ++i) {
-    const double w = weight(rng);
+    const double w = weight(rng), wy = separate ? weight(rng) : w;
     c.x_num.push_back(w * coordinate(rng));
-    c.y_num.push_back(w * coordinate(rng));
+    c.y_num.push_back(wy * coordinate(rng));
     c.x_den.push_back(w);
+    c.y_den.push_back(wy);
   }
-  c.y_den = c.x_den;
   c.horner = horner_layout(n, {&c.x_num, &c.x_den, &c.y_num, &c.y_den});
   c.exact = {exact::to_exact(c.x_num), exact::to_exact(c.x_den), exact::to_exact(c.y_num), exact::to_exact(c.y_den)};
   return c;
@@ -88,9 +99,13 @@ struct Lanes {
     t.push_back(t0);
     distance.push_back(-1.0);  // overwritten by every lane
   }
-  void run(const Implementation& implementation, const TestCurve& c, bool by_horner) {
-    implementation.rational_newton(c.view(by_horner), kSettings, t.size(), u.data(), v.data(), t.data(),
-                                   distance.data());
+  void run(const Implementation& implementation, const TestCurve& c, Variant variant) {
+    if (variant == Variant::nearest)
+      implementation.nearest_newton(c.view(true), kNearestSettings, t.size(), u.data(), v.data(), t.data(),
+                                    distance.data());
+    else
+      implementation.rational_newton(c.view(variant == Variant::horner), kSettings, t.size(), u.data(), v.data(),
+                                     t.data(), distance.data());
   }
 };
 
@@ -99,7 +114,7 @@ struct Lanes {
 // distance at rounding level. Bound: the rounded point moves the nearest parameter by
 // ~eps / |P'|, and speeds here are >= ~0.05, so 1e-13 has room; measured worst 5e-15.
 TEST(RationalNewton, OnCurvePointsFromNearbyStarts) {
-  for (const bool by_horner : {false, true})
+  for (const Variant variant : kVariants)
   for (const Implementation* implementation : available_implementations()) {
     std::mt19937_64 rng(20261128);
     double worst_t = 0, worst_distance = 0;
@@ -116,9 +131,9 @@ TEST(RationalNewton, OnCurvePointsFromNearbyStarts) {
         lanes.add(p.x, p.y, t_true + offset);
         truth.push_back(t_true);
       }
-      lanes.run(*implementation, c, by_horner);
+      lanes.run(*implementation, c, variant);
       for (std::size_t l = 0; l < truth.size(); ++l) {
-        SCOPED_TRACE(std::string(implementation->name) + (by_horner ? " Horner" : "") + " n=" + std::to_string(n) +
+        SCOPED_TRACE(std::string(implementation->name) + name(variant) + " n=" + std::to_string(n) +
                    " lane " + std::to_string(l));
         ASSERT_FALSE(std::isnan(lanes.distance[l]));
         EXPECT_NEAR(lanes.t[l], truth[l], 1e-13);
@@ -128,19 +143,19 @@ TEST(RationalNewton, OnCurvePointsFromNearbyStarts) {
       }
     }
     std::printf("%s%s: worst |t - t_true| %s, worst distance %s\n", std::string(implementation->name).c_str(),
-                by_horner ? " Horner" : "", sci(worst_t).c_str(), sci(worst_distance).c_str());
+                name(variant).c_str(), sci(worst_t).c_str(), sci(worst_distance).c_str());
   }
 }
 
 // Points off the curve along its normal at t_star: P(t_star) + delta N, with delta below half the
 // radius of curvature, so t_star is the nearest parameter nearby and the distance is |delta|.
 TEST(RationalNewton, OffCurvePointsAlongTheNormal) {
-  for (const bool by_horner : {false, true})
+  for (const Variant variant : kVariants)
   for (const Implementation* implementation : available_implementations()) {
     std::mt19937_64 rng(7);
     int checked = 0;
     for (int n = 2; n <= 24; ++n) {
-      const TestCurve c = random_curve(n, rng);
+      const TestCurve c = random_curve(n, rng, /*separate=*/n % 2 == 1);
       std::uniform_real_distribution<double> parameter(0.1, 0.9);
       Lanes lanes;
       std::vector<double> truth, offset;
@@ -159,9 +174,9 @@ TEST(RationalNewton, OffCurvePointsAlongTheNormal) {
         truth.push_back(t_star);
         offset.push_back(std::abs(delta));
       }
-      lanes.run(*implementation, c, by_horner);
+      lanes.run(*implementation, c, variant);
       for (std::size_t l = 0; l < truth.size(); ++l) {
-        SCOPED_TRACE(std::string(implementation->name) + (by_horner ? " Horner" : "") + " n=" + std::to_string(n) +
+        SCOPED_TRACE(std::string(implementation->name) + name(variant) + " n=" + std::to_string(n) +
                    " lane " + std::to_string(l));
         ASSERT_FALSE(std::isnan(lanes.distance[l]));
         // Off the curve f(t) = 0 still pins t to ~eps / (|P'|^2 (1 - delta kappa)); the point's own
@@ -178,7 +193,7 @@ TEST(RationalNewton, OffCurvePointsAlongTheNormal) {
 // A point past the end t = 1 along the tangent there: the nearest point of the segment is the end
 // itself, and the iteration must stop there exactly (clamped), at distance |delta|.
 TEST(RationalNewton, ClampsAtTheEndsOfTheSegment) {
-  for (const bool by_horner : {false, true})
+  for (const Variant variant : kVariants)
   for (const Implementation* implementation : available_implementations()) {
     std::mt19937_64 rng(11);
     for (int n = 2; n <= 12; ++n) {
@@ -189,8 +204,8 @@ TEST(RationalNewton, ClampsAtTheEndsOfTheSegment) {
         const double speed = std::hypot(p.dx, p.dy), sign = end == 1.0 ? 1.0 : -1.0, delta = 1e-3;
         lanes.add(p.x + sign * delta * p.dx / speed, p.y + sign * delta * p.dy / speed, end == 1.0 ? 1.0 - 1e-3 : 1e-3);
       }
-      lanes.run(*implementation, c, by_horner);
-      SCOPED_TRACE(std::string(implementation->name) + (by_horner ? " Horner" : "") + " n=" + std::to_string(n));
+      lanes.run(*implementation, c, variant);
+      SCOPED_TRACE(std::string(implementation->name) + name(variant) + " n=" + std::to_string(n));
       EXPECT_EQ(lanes.t[0], 0.0);
       EXPECT_EQ(lanes.t[1], 1.0);
       EXPECT_NEAR(lanes.distance[0], 1e-3, 1e-14);
@@ -202,7 +217,7 @@ TEST(RationalNewton, ClampsAtTheEndsOfTheSegment) {
 // Starts the kernel does not take (NaN, outside [0, 1], infinite) come back as given, with distance
 // NaN; lanes around them are settled as usual; count 0 touches nothing.
 TEST(RationalNewton, LeavesUnusableStartsToTheCaller) {
-  for (const bool by_horner : {false, true})
+  for (const Variant variant : kVariants)
   for (const Implementation* implementation : available_implementations()) {
     std::mt19937_64 rng(3);
     const TestCurve c = random_curve(5, rng);
@@ -215,8 +230,8 @@ TEST(RationalNewton, LeavesUnusableStartsToTheCaller) {
       lanes.add(p.x, p.y, s);
       truth.push_back(t_true);
     }
-    lanes.run(*implementation, c, by_horner);
-    SCOPED_TRACE(std::string(implementation->name) + (by_horner ? " Horner" : ""));
+    lanes.run(*implementation, c, variant);
+    SCOPED_TRACE(std::string(implementation->name) + name(variant));
     for (std::size_t l = 0; l < truth.size(); ++l) {
       const bool usable = std::isfinite(starts[l]) && starts[l] >= 0 && starts[l] <= 1;
       if (usable) {
@@ -227,22 +242,30 @@ TEST(RationalNewton, LeavesUnusableStartsToTheCaller) {
         EXPECT_TRUE(std::isnan(starts[l]) ? std::isnan(lanes.t[l]) : lanes.t[l] == starts[l]) << l;
       }
     }
+    Lanes none;
+    none.run(*implementation, c, variant);  // count 0
     double t = 0.5, distance = 7.0;
-    implementation->rational_newton(c.view(by_horner), kSettings, 0, &t, &t, &t, &distance);
+    if (variant == Variant::nearest)
+      implementation->nearest_newton(c.view(true), kNearestSettings, 0, &t, &t, &t, &distance);
+    else
+      implementation->rational_newton(c.view(variant == Variant::horner), kSettings, 0, &t, &t, &t, &distance);
     EXPECT_EQ(t, 0.5);
     EXPECT_EQ(distance, 7.0);
   }
 }
 
 // With Horner's jets no implementation has the scalar code's bits to match, but all of them give
-// the same bits (no fused multiply-add, the same operations in the same order per lane), whatever
-// the lane's group: off-curve points from starts a sampling search would give.
+// the same bits (rational_newton: no fused multiply-add; nearest_newton: the same fused ones on
+// every target; the same operations in the same order per lane), whatever the lane's group:
+// off-curve points from starts a sampling search would give, one denominator and two.
 TEST(RationalNewton, HornerJetsGiveEveryImplementationTheSameBits) {
+  for (const Variant variant : {Variant::horner, Variant::nearest})
+  for (const bool separate : {false, true}) {
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   int compared = 0;
   for (int n = 1; n <= 24; ++n) {
-    const TestCurve c = random_curve(n, rng);
+    const TestCurve c = random_curve(n, rng, separate);
     Lanes given;
     for (int k = 0; k < 37; ++k) {
       const Exact p = at(c, unit(rng));
@@ -252,12 +275,13 @@ TEST(RationalNewton, HornerJetsGiveEveryImplementationTheSameBits) {
     std::vector<double> t0, distance0;
     for (const Implementation* implementation : available_implementations()) {
       Lanes lanes = given;
-      lanes.run(*implementation, c, /*by_horner=*/true);
+      lanes.run(*implementation, c, variant);
       if (t0.empty()) {
         t0 = lanes.t, distance0 = lanes.distance;
         continue;
       }
-      SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n));
+      SCOPED_TRACE(std::string(implementation->name) + name(variant) + (separate ? " separate" : "") +
+                   " n=" + std::to_string(n));
       for (std::size_t l = 0; l < t0.size(); ++l) {
         EXPECT_TRUE(test_support::same_bits(lanes.t[l], t0[l])) << l;
         EXPECT_TRUE(test_support::same_bits(lanes.distance[l], distance0[l])) << l;
@@ -267,6 +291,7 @@ TEST(RationalNewton, HornerJetsGiveEveryImplementationTheSameBits) {
   }
   if (available_implementations().size() > 1) {
     EXPECT_GT(compared, 0);
+  }
   }
 }
 

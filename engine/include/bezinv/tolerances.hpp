@@ -76,6 +76,10 @@ inline constexpr double kNewtonTrustedStep = 1e-6;
 // A step this small is the last: the new t is within C 1e-24 of the root (C = f''/2f'), below its
 // ulp unless the curve all but stops; its distance is the first-order update of the last one.
 inline constexpr double kNewtonFinalStep = 1e-12;
+// The off-curve path's Newton kernel (nearest_newton) takes a step this small as its last where
+// the distance is convex: Newton converges quadratically there, and what remains, about
+// |f''/2f'| 1e-18, is below t's ulp for any but an all but stationary curve.
+inline constexpr double kNearestNewtonFinalStep = 1e-9;
 // A larger step is halved at most this many times looking for a point no farther from P0.
 inline constexpr int kNewtonMaxHalvings = 40;
 // A step that moves t by at most this many ulps of max(1, |t|) is the last (the kernels'

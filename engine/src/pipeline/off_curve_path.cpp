@@ -14,50 +14,6 @@
 #include "stationary_points.hpp"
 
 namespace bezinv::detail {
-namespace {
-
-// Starts for Newton towards the nearest points of (u[l], v[l]), l < count: the nearest of every
-// `stride`-th sample of the curve (plan.nearest_samples), moved to the vertex of the parabola
-// through the squared distances of it and its two neighbours (kept within one spacing of it).
-// Sample by sample over all lanes at once, so that the inner loop vectorizes; the first of equally
-// near samples is kept, as a search point by point would.
-void nearest_samples(const PlanData& plan, const double* u, const double* v, std::size_t count, int stride, double* t) {
-  const double* p = plan.nearest_samples.data();
-  const int last = static_cast<int>(plan.nearest_samples.size() / 2) - 1;
-  std::array<double, kBatchLanes> best, at;
-  best.fill(std::numeric_limits<double>::infinity());
-  at.fill(0.0);
-  for (int k = 0; k <= last; k += stride) {
-    const double x = p[2 * k], y = p[2 * k + 1], sample = k;
-    for (std::size_t l = 0; l < count; ++l) {
-      // (Both selects branch-free, so that GCC vectorizes: at[l] and the sample are whole numbers,
-      // exact in the sum.)
-      const double dx = x - u[l], dy = y - v[l], d2 = dx * dx + dy * dy, nearest = best[l], a = at[l];
-      at[l] = a + (d2 < nearest) * (sample - a);
-      best[l] = d2 < nearest ? d2 : nearest;
-    }
-  }
-  const auto distance2 = [&](int k, std::size_t l) {
-    const double dx = p[2 * k] - u[l], dy = p[2 * k + 1] - v[l];
-    return dx * dx + dy * dy;
-  };
-  for (std::size_t l = 0; l < count; ++l) {
-    const int k = static_cast<int>(at[l]);
-    t[l] = static_cast<double>(k) / last;
-    if (k >= stride && k + stride <= last) {
-      const double before = distance2(k - stride, l), after = distance2(k + stride, l);
-      const double curvature = before - 2 * best[l] + after;
-      if (curvature > 0) t[l] += std::clamp(0.5 * (before - after) / curvature, -1.0, 1.0) * stride / last;
-    }
-  }
-}
-
-// BM_KernelRationalNewton (bench/kernels_bench.cpp), off-curve starts, Horner's over de
-// Casteljau's: 0.84 at degree 3, 0.96-0.99 at 4, 1.10 at 5 and 1.47 at 8 (AVX-512), 1.64 at 5
-// and 1.95 at 8 (AVX2).
-constexpr int kHornerNewtonMinDegree = 5;
-
-}  // namespace
 
 void off_curve_path(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
                     PointResult* results, StageClock& clock) {
@@ -97,19 +53,21 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
     ++m;
   }
   if (m == 0) return clock.lap(&StageSeconds::off_curve);
-  nearest_samples(plan, u.data() + newton_from, v.data() + newton_from, newton, kNearestSamplesPerDegree / 4,
-                  t.data() + newton_from);
+  // The others' starts: the nearest of every fourth of the plan's samples, moved to the vertex of
+  // the parabola through the squared distances there (nearest_sample).
+  const kernels::Implementation& kernel = kernels::active_implementation();
+  if (newton > 0)
+    kernel.nearest_sample(plan.nearest_samples.data(), static_cast<int>(plan.nearest_samples.size() / 2) - 1,
+                          kNearestSamplesPerDegree / 4, newton, u.data() + newton_from, v.data() + newton_from,
+                          t.data() + newton_from);
 
-  // 2. Newton from the starts, lane-batched: refine_parameter's steps, on jets by Horner's rule
-  //    from degree kHornerNewtonMinDegree on (O(n) where its de Casteljau is O(n^2); below, de
-  //    Casteljau written out in registers is the faster). Their bits need not be the scalar
-  //    code's: the answer is what the proofs below make of it.
-  if (m > newton_from) {
-    const kernels::RationalCurve curve = kernel_curve(plan, plan.degree >= kHornerNewtonMinDegree);
-    kernels::active_implementation().rational_newton(curve, kNewtonSettings, m - newton_from, u.data() + newton_from,
-                                                     v.data() + newton_from, t.data() + newton_from,
-                                                     distance.data() + newton_from);
-  }
+  // 2. Newton from the starts, lane-batched (nearest_newton: Horner's jets, fused, the descent
+  //    test in the next jet). Its bits need not be the scalar refinement's: the answer is what
+  //    the proofs below make of it.
+  if (m > newton_from)
+    kernel.nearest_newton(kernel_curve(plan, /*horner=*/true), kNearestNewtonSettings, m - newton_from,
+                          u.data() + newton_from, v.data() + newton_from, t.data() + newton_from,
+                          distance.data() + newton_from);
 
   // 3. Per lane, the proofs: the refined start as the certified search's hint (usually the
   //    nearest point already: the isolation certificate proves it at once near one branch, the

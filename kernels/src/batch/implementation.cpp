@@ -46,17 +46,20 @@ struct Table {
       const auto null = batch::null_vector_kernel(kCandidates[i].target);
       const auto null_seed = batch::null_vector_seed_kernel(kCandidates[i].target);
       const auto newton = batch::rational_newton_kernel(kCandidates[i].target);
+      const auto sample = batch::nearest_sample_kernel(kCandidates[i].target);
+      const auto nearest = batch::nearest_newton_kernel(kCandidates[i].target);
       const auto slope = batch::rational_slope_kernel(kCandidates[i].target);
       const auto parameter = batch::bernstein_parameter_kernel(kCandidates[i].target);
       const auto bezout = batch::bezout_matrix_kernel(kCandidates[i].target);
       const auto bezout_seed = batch::bezout_null_vector_seed_kernel(kCandidates[i].target);
       const auto space_check = batch::space_check_kernel(kCandidates[i].target);
-      if (svd == nullptr || null == nullptr || null_seed == nullptr || newton == nullptr || slope == nullptr ||
+      if (svd == nullptr || null == nullptr || null_seed == nullptr || newton == nullptr || sample == nullptr || nearest == nullptr ||
+          slope == nullptr ||
           parameter == nullptr || bezout == nullptr || bezout_seed == nullptr || space_check == nullptr ||
           (supported & kCandidates[i].target) == 0)
         continue;
       storage[count] =
-          Implementation{kCandidates[i].name, svd, null, null_seed, newton, slope, parameter, bezout, bezout_seed,
+          Implementation{kCandidates[i].name, svd, null, null_seed, newton, sample, nearest, slope, parameter, bezout, bezout_seed,
                          space_check};
       available[count] = &storage[count];
       ++count;

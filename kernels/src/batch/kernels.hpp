@@ -17,6 +17,11 @@ using NullVectorSeedKernel = void (*)(int n, std::size_t count, std::size_t stri
 using RationalNewtonKernel = void (*)(const RationalCurve& curve, const NewtonSettings& settings,
                                       std::size_t count, const double* u, const double* v, double* t,
                                       double* distance);
+using NearestSampleKernel = void (*)(const double* samples, int last, int stride, std::size_t count,
+                                     const double* u, const double* v, double* t);
+using NearestNewtonKernel = void (*)(const RationalCurve& curve, const NearestNewtonSettings& settings,
+                                     std::size_t count, const double* u, const double* v, double* t,
+                                     double* distance);
 using RationalSlopeKernel = void (*)(const RationalCurve& curve, std::size_t count, const double* t, double* x,
                                      double* y, double* dx, double* dy);
 using BernsteinParameterKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* z, double* t);
@@ -35,6 +40,8 @@ SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);
 NullVectorKernel null_vector_kernel(std::int64_t target);
 NullVectorSeedKernel null_vector_seed_kernel(std::int64_t target);
 RationalNewtonKernel rational_newton_kernel(std::int64_t target);
+NearestSampleKernel nearest_sample_kernel(std::int64_t target);
+NearestNewtonKernel nearest_newton_kernel(std::int64_t target);
 RationalSlopeKernel rational_slope_kernel(std::int64_t target);
 BernsteinParameterKernel bernstein_parameter_kernel(std::int64_t target);
 BezoutMatrixKernel bezout_matrix_kernel(std::int64_t target);

@@ -71,6 +71,15 @@ struct NewtonSettings {
   double final_step;    // a step up to this, where f' >= |P'|^2 / 2, is the last (see rational_newton)
 };
 
+// The safeguards of nearest_newton (the engine passes its tolerances.hpp values).
+struct NearestNewtonSettings {
+  int max_iterations;  // Newton iterations (a halved step is one)
+  double max_step;     // largest step in t of one iteration
+  double trusted_step; // steps up to this are taken without the descent test
+  int max_halvings;    // of one step whose end is farther than its start
+  double final_step;   // a step up to this, where f' >= |P'|^2 / 2, is the last
+};
+
 // The space curve of space_check, P = (x / D_x, y / D_y, z / D_z), of degree `degree`
 // (kSpaceCheckMinDegree..kSpaceCheckMaxDegree), laid out for Horner's rule on its polynomials and
 // their derivatives side by side (the engine's SpaceData::first_order_forward and
@@ -150,6 +159,30 @@ struct Implementation {
   // same steps on the jets by Horner's rule: the same safeguards, other rounding (RationalCurve).
   void (*rational_newton)(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                           const double* u, const double* v, double* t, double* distance);
+
+  // Starts for nearest_newton: per lane, the nearest to (u[l], v[l]) of every `stride`-th sample
+  // k = 0, stride, 2 stride, ... <= last of a curve (samples: x, y of sample k at 2k, 2k + 1; the
+  // first of equally near ones), moved to the vertex of the parabola through the squared
+  // distances of it and its two sampled neighbours (at most one spacing): t[l] in [0, 1] as
+  // k / last. Without fused multiply-add: every implementation gives the same bits.
+  void (*nearest_sample)(const double* samples, int last, int stride, std::size_t count, const double* u,
+                         const double* v, double* t);
+
+  // Newton's method for the nearest point of `curve` to (u[l], v[l]) on the segment [0, 1], from
+  // the start t[l], for points off the curve: the engine's certified search proves what it
+  // finds, so it has no scalar twin to match, and costs a fraction of rational_newton's
+  // (batch/nearest_newton-inl.hpp says how). Steps of f(t) = (P(t) - P0) . P'(t) with
+  // f' = |P'|^2 + (P - P0) . P'' (|P'|^2 where that is not positive), capped at
+  // settings.max_step and clamped to [0, 1]; a step above settings.trusted_step whose end is
+  // farther from P0 than its start is halved back from its start (at most settings.max_halvings times); a step of at most
+  // settings.final_step where f' >= |P'|^2 / 2 is the last, its distance by the jet's Taylor
+  // polynomial |E + P' s + P'' s^2 / 2|. A settled lane gets its t and distance[l] = |P(t) - P0|;
+  // out of iterations, the last point whose distance did not increase. A lane not settled (start
+  // not in [0, 1], a distance that is not finite) keeps its t and gets distance[l] = NaN.
+  // curve.horner is required; curve.degree in [kRationalNewtonMinDegree, kRationalNewtonMaxDegree].
+  // Every implementation gives the same bits (fused multiply-adds on every target).
+  void (*nearest_newton)(const RationalCurve& curve, const NearestNewtonSettings& settings, std::size_t count,
+                         const double* u, const double* v, double* t, double* distance);
 
   // P(t[l]) = (x[l], y[l]) and P'(t[l]) = (dx[l], dy[l]) of `curve` by Horner's rule on
   // curve.horner (required), for `count` lanes: the engine's curve_slope_horner, operation for

@@ -1,0 +1,69 @@
+// The off-curve path's starts: per lane, the nearest of a curve's samples (bezinv/kernels/batch.hpp,
+// Implementation::nearest_sample). Re-included once per instruction set by hwy/foreach_target.h
+// (see nearest_newton.cpp, which compiles it with nearest_newton-inl.hpp).
+//
+// Sample by sample over a group of lanes held in registers: per sample two broadcasts, the squared
+// distance of every lane and two selects. Without fused multiply-add (the file is compiled with
+// -ffp-contract=off), so every implementation finds the same sample and the same start.
+#if defined(BEZINV_KERNELS_BATCH_NEAREST_SAMPLE_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef BEZINV_KERNELS_BATCH_NEAREST_SAMPLE_INL_H_
+#undef BEZINV_KERNELS_BATCH_NEAREST_SAMPLE_INL_H_
+#else
+#define BEZINV_KERNELS_BATCH_NEAREST_SAMPLE_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <limits>
+
+#include "batch/wide-inl.hpp"
+#include "bezinv/kernels/batch.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace bezinv::kernels::HWY_NAMESPACE {
+
+void nearest_sample_batch(const double* samples, int last, int stride, std::size_t count, const double* u,
+                          const double* v, double* t) {
+  namespace hn = wide;
+  using D = wide::Tag<(HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128) ? 1 : 2>;
+  using V = hn::Vec<D>;
+  const D d;
+  constexpr std::size_t L = hn::MaxLanes(D());
+  HWY_ALIGN double lane_u[L], lane_v[L], best[L], at[L];
+  const auto distance2 = [&](int k, std::size_t l) {
+    const double dx = samples[2 * k] - lane_u[l], dy = samples[2 * k + 1] - lane_v[l];
+    return dx * dx + dy * dy;
+  };
+  for (std::size_t first = 0; first < count; first += L) {
+    const std::size_t lanes = std::min(L, count - first);
+    for (std::size_t l = 0; l < L; ++l) lane_u[l] = u[first + std::min(l, lanes - 1)], lane_v[l] = v[first + std::min(l, lanes - 1)];
+    const V pu = hn::Load(d, lane_u), pv = hn::Load(d, lane_v);
+    V nearest = hn::Set(d, std::numeric_limits<double>::infinity()), index = hn::Zero(d);
+    for (int k = 0; k <= last; k += stride) {
+      const V dx = hn::Sub(hn::Set(d, samples[2 * k]), pu), dy = hn::Sub(hn::Set(d, samples[2 * k + 1]), pv);
+      const V d2 = hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy));
+      const auto nearer = hn::Lt(d2, nearest);  // strict: the first of equally near samples stays
+      nearest = hn::IfThenElse(nearer, d2, nearest);
+      index = hn::IfThenElse(nearer, hn::Set(d, k), index);
+    }
+    hn::Store(nearest, d, best);
+    hn::Store(index, d, at);
+    for (std::size_t l = 0; l < lanes; ++l) {
+      const int k = static_cast<int>(at[l]);
+      double start = static_cast<double>(k) / last;
+      if (k >= stride && k + stride <= last) {
+        const double before = distance2(k - stride, l), after = distance2(k + stride, l);
+        const double curvature = before - 2 * best[l] + after;
+        if (curvature > 0) start += std::clamp(0.5 * (before - after) / curvature, -1.0, 1.0) * stride / last;
+      }
+      t[first + l] = start;
+    }
+  }
+}
+
+}  // namespace bezinv::kernels::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // BEZINV_KERNELS_BATCH_NEAREST_SAMPLE_INL_H_
