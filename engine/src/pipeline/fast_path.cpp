@@ -51,34 +51,52 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
   clock.lap(&StageSeconds::refine);
 }
 
-// Lane-batched refinement of every lane from t_algebraic (t_refined, distance), grouped. The Newton
-// kernel runs a SIMD group until its slowest lane settles, and a point off the curve takes several
-// steps where a point on it takes one: in a batch of both kinds (measured points, half of them
-// noisy) nearly every group mixed them and ran the on-curve lanes as long as the others. So the
-// kernel gets the lanes whose seed put them on the curve (B's sigma_min estimate, ||B z|| / ||B||,
-// at rounding level) first and the rest after, and few groups mix. Each lane computes the same
-// numbers whatever its group (rational_newton), so the answers are the ungrouped ones bit for bit.
-// A batch of one kind (the estimate NaN where the formula gave t: no B) is refined in place.
-void refine_grouped(const kernels::Implementation& kernel, const kernels::RationalCurve& curve, std::size_t count,
+// Lane-batched refinement of every lane from t_algebraic (t_refined, distance), in two groups by
+// B's sigma_min estimate (||B z|| / ||B||): the lanes whose seed put them on the curve (at rounding
+// level, or NaN where the formula gave t: no B) by rational_newton, refine.cpp's Newton bit for
+// bit; the others, off the curve (beyond ~1e-12 of it), by nearest_newton, the off-curve path's
+// cheaper kernel, whose t the isolation certificate or the off-curve path's proofs then take.
+// Except where that ends at an end of the segment: whether a point by an end is within the
+// tolerance there, or nearer the extension, turns on the distance's last bits, so those lanes are
+// refined again by rational_newton, as the scalar code (and the SVD path) would.
+// Grouping also keeps the Newton kernels' SIMD groups of one kind: a group runs until its slowest
+// lane settles, and a point off the curve takes several steps where a point on it takes one. A
+// lane's group depends on its own estimate alone, so its answer does not depend on its batch.
+void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
                     BatchWorkspace& w) {
   constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
   std::array<std::uint8_t, kBatchLanes> lane_of;
   std::size_t near = 0;
   for (std::size_t l = 0; l < count; ++l)
-    if (w.estimate[l] <= kOnCurveEstimate) lane_of[near++] = static_cast<std::uint8_t>(l);
-  if (near == 0 || near == count) {
-    kernel.rational_newton(curve, kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(), w.distance.data());
+    if (!(w.estimate[l] > kOnCurveEstimate)) lane_of[near++] = static_cast<std::uint8_t>(l);
+  if (near == count) {
+    kernel.rational_newton(kernel_curve(plan), kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(),
+                           w.distance.data());
     return;
   }
   std::size_t far = near;
   for (std::size_t l = 0; l < count; ++l)
-    if (!(w.estimate[l] <= kOnCurveEstimate)) lane_of[far++] = static_cast<std::uint8_t>(l);
+    if (w.estimate[l] > kOnCurveEstimate) lane_of[far++] = static_cast<std::uint8_t>(l);
   std::array<double, kBatchLanes> u, v, t, distance;
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t l = lane_of[k];
     u[k] = w.u[l], v[k] = w.v[l], t[k] = w.t_refined[l];
   }
-  kernel.rational_newton(curve, kNewtonSettings, count, u.data(), v.data(), t.data(), distance.data());
+  kernel.rational_newton(kernel_curve(plan), kNewtonSettings, near, u.data(), v.data(), t.data(), distance.data());
+  kernel.nearest_newton(kernel_curve(plan, /*horner=*/true), kNearestNewtonSettings, count - near, u.data() + near,
+                        v.data() + near, t.data() + near, distance.data() + near);
+  // Those that ended at an end, again from their start, compacted.
+  std::size_t ends = 0;
+  std::array<std::uint8_t, kBatchLanes> again_of;
+  for (std::size_t k = near; k < count; ++k)
+    if (t[k] == 0.0 || t[k] == 1.0) again_of[ends++] = static_cast<std::uint8_t>(k);
+  std::array<double, kBatchLanes> eu, ev, et, ed;
+  for (std::size_t e = 0; e < ends; ++e) {
+    const std::size_t k = again_of[e], l = lane_of[k];
+    eu[e] = u[k], ev[e] = v[k], et[e] = w.t_refined[l];
+  }
+  if (ends > 0) kernel.rational_newton(kernel_curve(plan), kNewtonSettings, ends, eu.data(), ev.data(), et.data(), ed.data());
+  for (std::size_t e = 0; e < ends; ++e) t[again_of[e]] = et[e], distance[again_of[e]] = ed[e];
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t l = lane_of[k];
     w.t_refined[l] = t[k], w.distance[l] = distance[k];
@@ -163,8 +181,7 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
   // settle(), as it does a lane that ends at an end of the segment off the curve (settle() then
   // also looks along the extension).
   std::copy_n(w.t_algebraic.begin(), count, w.t_refined.begin());
-  const kernels::RationalCurve curve = detail::kernel_curve(plan);
-  refine_grouped(kernel, curve, count, w);
+  refine_grouped(kernel, plan, count, w);
   detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
   if (two_passes) {
     // The common case of pass 1, for the whole batch first: a lane refined onto the segment within
