@@ -292,6 +292,18 @@ void isolation_pieces(PlanData& plan) {
       plan.isolation_groups[4 * g + k] = box[k] + outward;
     }
   }
+  // The super-groups' boxes: each around its groups' (already widened) boxes.
+  const int groups = K / kIsolationGroup, supers = groups >= 2 * kIsolationSuper ? groups / kIsolationSuper : 0;
+  plan.isolation_supers.assign(4 * supers, 0.0);
+  for (int s = 0; s < supers; ++s) {
+    double* box = plan.isolation_supers.data() + 4 * s;
+    box[0] = box[2] = inf, box[1] = box[3] = -inf;
+    for (int g = s * kIsolationSuper; g < (s + 1) * kIsolationSuper; ++g) {
+      const double* group = plan.isolation_groups.data() + 4 * g;
+      box[0] = std::min(box[0], group[0]), box[1] = std::max(box[1], group[1]);
+      box[2] = std::min(box[2], group[2]), box[3] = std::max(box[3], group[3]);
+    }
+  }
 }
 
 namespace {
@@ -332,14 +344,20 @@ bool isolated(const PlanData& plan, double u0, double v0, double t, double dista
   const double limit = isolation_limit(tolerance);
   if (plan.isolation_far[j] - distance > limit) return true;
   // Otherwise P0 itself against every box not next to t's: all farther than the tolerance. A
-  // group's box holds the boxes of its pieces, so a group farther than that is done with; the
-  // pieces of the few others one by one. (A NaN point is inside every box: never certified.)
+  // super-group's box holds its groups' boxes, and a group's box the boxes of its pieces, so a
+  // super-group or a group farther than that is done with; the pieces of the few others one by
+  // one. (A NaN point is inside every box: never certified.)
   const double limit2 = limit * limit;
   const double* groups = plan.isolation_groups.data();
-  for (int g = 0; g < K / kIsolationGroup; ++g) {
-    if (box_distance2(groups + 4 * g, u0, v0) > limit2) continue;
-    for (int q = g * kIsolationGroup; q < (g + 1) * kIsolationGroup; ++q)
-      if (!(isolation_box_distance2(plan, q, u0, v0) > limit2) && (q < j - 1 || q > j + 1)) return false;
+  const int group_count = K / kIsolationGroup, supers = static_cast<int>(plan.isolation_supers.size() / 4);
+  const int per_super = supers > 0 ? kIsolationSuper : group_count;
+  for (int s = 0; s < std::max(supers, 1); ++s) {
+    if (supers > 0 && box_distance2(plan.isolation_supers.data() + 4 * s, u0, v0) > limit2) continue;
+    for (int g = s * per_super; g < (s + 1) * per_super; ++g) {
+      if (box_distance2(groups + 4 * g, u0, v0) > limit2) continue;
+      for (int q = g * kIsolationGroup; q < (g + 1) * kIsolationGroup; ++q)
+        if (!(isolation_box_distance2(plan, q, u0, v0) > limit2) && (q < j - 1 || q > j + 1)) return false;
+    }
   }
   return true;
 }

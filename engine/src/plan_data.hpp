@@ -225,7 +225,8 @@ struct PlanData {
   // widened by kIsolationMargin), which clears the whole group with one comparison. Empty for
   // degree < 2.
   int isolation_pieces = 0;
-  std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique, isolation_groups;
+  std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique, isolation_groups,
+      isolation_supers;
 
   // What only answers off the curve use, built by the first point that asks (off_curve_data).
   Lazy<OffCurveData> off_curve;

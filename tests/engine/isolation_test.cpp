@@ -107,7 +107,16 @@ TEST(Isolation, EveryPieceOfTheCurveLiesInItsBox) {
         EXPECT_GE(group[1], box[1]) << "n " << n << " piece " << j;
         EXPECT_LE(group[2], box[2]) << "n " << n << " piece " << j;
         EXPECT_GE(group[3], box[3]) << "n " << n << " piece " << j;
+        // And the super-group's the group's (from 16 groups on).
+        if (plan.isolation_supers.empty()) continue;
+        const double* super = plan.isolation_supers.data() + 4 * (j / (detail::kIsolationGroup * detail::kIsolationSuper));
+        EXPECT_LE(super[0], group[0]) << "n " << n << " piece " << j;
+        EXPECT_GE(super[1], group[1]) << "n " << n << " piece " << j;
+        EXPECT_LE(super[2], group[2]) << "n " << n << " piece " << j;
+        EXPECT_GE(super[3], group[3]) << "n " << n << " piece " << j;
       }
+      EXPECT_EQ(plan.isolation_supers.size(),
+                K / detail::kIsolationGroup >= 2 * detail::kIsolationSuper ? 4u * (K / detail::kIsolationGroup / detail::kIsolationSuper) : 0u);
       ASSERT_EQ(plan.isolation_groups.size(), 4u * (K / detail::kIsolationGroup));
   });
   RecordProperty("boxes", boxes);
