@@ -222,6 +222,7 @@ void isolation_pieces(PlanData& plan) {
   plan.isolation_monotone.clear();
   plan.isolation_unique.clear();
   plan.isolation_groups.clear();
+  plan.isolation_far_wide.clear();
   const int n = plan.degree;
   if (n < 2) return;
   const int K = isolation_piece_count(n);
@@ -258,18 +259,24 @@ void isolation_pieces(PlanData& plan) {
   const double* const x_half = x_centre + K;
   const double* const y_centre = x_centre + 2 * K;
   const double* const y_half = x_centre + 3 * K;
+  // The same beyond kIsolationWide pieces either side (isolation_far_wide): a point that fails the
+  // first comparison then tests only the boxes of the pieces between.
   plan.isolation_far.assign(K, inf);
+  plan.isolation_far_wide.assign(K, inf);
   for (int j = 0; j < K; ++j) {
-    double nearest2 = inf;
+    double nearest2 = inf, wide2 = inf;
     for (int q = 0; q < K; ++q) {
       if (q >= j - 1 && q <= j + 1) continue;
       double dx = std::abs(x_centre[j] - x_centre[q]) - x_half[j] - x_half[q];
       double dy = std::abs(y_centre[j] - y_centre[q]) - y_half[j] - y_half[q];
       dx = dx > 0 ? dx : 0.0;  // NaN (an infinite box) -> 0
       dy = dy > 0 ? dy : 0.0;
-      nearest2 = std::min(nearest2, dx * dx + dy * dy);
+      const double d2 = dx * dx + dy * dy;
+      nearest2 = std::min(nearest2, d2);
+      if (q < j - kIsolationWide || q > j + kIsolationWide) wide2 = std::min(wide2, d2);
     }
     plan.isolation_far[j] = std::sqrt(nearest2);
+    plan.isolation_far_wide[j] = std::sqrt(wide2);
   }
 
   // The groups' boxes, widened as the pieces' own (kIsolationMargin) for the rounding of their
@@ -290,18 +297,6 @@ void isolation_pieces(PlanData& plan) {
     for (int k = 0; k < 4; ++k) {
       const double outward = (k % 2 == 0 ? -1.0 : 1.0) * kIsolationMargin * std::abs(box[k]);
       plan.isolation_groups[4 * g + k] = box[k] + outward;
-    }
-  }
-  // The super-groups' boxes: each around its groups' (already widened) boxes.
-  const int groups = K / kIsolationGroup, supers = groups >= 2 * kIsolationSuper ? groups / kIsolationSuper : 0;
-  plan.isolation_supers.assign(4 * supers, 0.0);
-  for (int s = 0; s < supers; ++s) {
-    double* box = plan.isolation_supers.data() + 4 * s;
-    box[0] = box[2] = inf, box[1] = box[3] = -inf;
-    for (int g = s * kIsolationSuper; g < (s + 1) * kIsolationSuper; ++g) {
-      const double* group = plan.isolation_groups.data() + 4 * g;
-      box[0] = std::min(box[0], group[0]), box[1] = std::max(box[1], group[1]);
-      box[2] = std::min(box[2], group[2]), box[3] = std::max(box[3], group[3]);
     }
   }
 }
@@ -343,21 +338,23 @@ bool isolated(const PlanData& plan, double u0, double v0, double t, double dista
   if (!isolated_around(plan, j, distance)) return false;
   const double limit = isolation_limit(tolerance);
   if (plan.isolation_far[j] - distance > limit) return true;
-  // Otherwise P0 itself against every box not next to t's: all farther than the tolerance. A
-  // super-group's box holds its groups' boxes, and a group's box the boxes of its pieces, so a
-  // super-group or a group farther than that is done with; the pieces of the few others one by
-  // one. (A NaN point is inside every box: never certified.)
   const double limit2 = limit * limit;
+  // Every box beyond kIsolationWide pieces of t's is as far by the same argument: then P0 itself
+  // against the boxes between (not next to t's), all farther than the tolerance.
+  if (plan.isolation_far_wide[j] - distance > limit) {
+    bool near = false;
+    for (int q = std::max(0, j - kIsolationWide); q <= std::min(K - 1, j + kIsolationWide); ++q)
+      near |= (q < j - 1 || q > j + 1) && !(isolation_box_distance2(plan, q, u0, v0) > limit2);
+    return !near;
+  }
+  // Otherwise P0 itself against every box not next to t's: all farther than the tolerance. A
+  // group's box holds the boxes of its pieces, so a group farther than that is done with; the
+  // pieces of the few others one by one. (A NaN point is inside every box: never certified.)
   const double* groups = plan.isolation_groups.data();
-  const int group_count = K / kIsolationGroup, supers = static_cast<int>(plan.isolation_supers.size() / 4);
-  const int per_super = supers > 0 ? kIsolationSuper : group_count;
-  for (int s = 0; s < std::max(supers, 1); ++s) {
-    if (supers > 0 && box_distance2(plan.isolation_supers.data() + 4 * s, u0, v0) > limit2) continue;
-    for (int g = s * per_super; g < (s + 1) * per_super; ++g) {
-      if (box_distance2(groups + 4 * g, u0, v0) > limit2) continue;
-      for (int q = g * kIsolationGroup; q < (g + 1) * kIsolationGroup; ++q)
-        if (!(isolation_box_distance2(plan, q, u0, v0) > limit2) && (q < j - 1 || q > j + 1)) return false;
-    }
+  for (int g = 0; g < K / kIsolationGroup; ++g) {
+    if (box_distance2(groups + 4 * g, u0, v0) > limit2) continue;
+    for (int q = g * kIsolationGroup; q < (g + 1) * kIsolationGroup; ++q)
+      if (!(isolation_box_distance2(plan, q, u0, v0) > limit2) && (q < j - 1 || q > j + 1)) return false;
   }
   return true;
 }

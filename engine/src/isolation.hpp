@@ -57,10 +57,9 @@ int isolation_piece_count(int degree);
 // Pieces per group of plan.isolation_groups: a point far from a group's box is far from all of
 // them, so isolated() looks at the pieces of the few groups near the point only (K divides by it).
 inline constexpr int kIsolationGroup = 8;
-// Groups per super-group of plan.isolation_supers, from K = 128 on (16 groups or more): at
-// K = 256 a point near one branch tests 4 super-group boxes and the groups of the one or two near
-// it instead of all 32 group boxes.
-inline constexpr int kIsolationSuper = 8;
+// isolation_far_wide: per piece, the distance from its box to the nearest box more than this many
+// pieces away.
+inline constexpr int kIsolationWide = 8;
 
 // The squared distance from (u0, v0) to the box of piece q (0 inside it, and for a NaN point).
 inline double isolation_box_distance2(const PlanData& plan, int q, double u0, double v0) {
@@ -79,8 +78,8 @@ inline double box_distance2(const double* box, double u0, double v0) {
   return dx * dx + dy * dy;
 }
 
-// Fills plan.isolation_boxes, isolation_far, isolation_monotone, isolation_unique,
-// isolation_groups and isolation_supers from the normalized curve (make_plan).
+// Fills plan.isolation_boxes, isolation_far, isolation_far_wide, isolation_monotone,
+// isolation_unique and isolation_groups from the normalized curve (make_plan).
 void isolation_pieces(PlanData& plan);
 
 // True when no parameter distinct from t (by more than kDistinctParameterGap) can be where a

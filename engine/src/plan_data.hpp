@@ -222,11 +222,12 @@ struct PlanData {
   // next to it, and per piece a bound that makes the curve monotone around it and the distance
   // from the curve below which a point has one nearest parameter there (0: none); and per group of
   // kIsolationGroup consecutive pieces the box around their boxes (x min, x max, y min, y max,
-  // widened by kIsolationMargin), which clears the whole group with one comparison. Empty for
+  // widened by kIsolationMargin), which clears the whole group with one comparison; per piece,
+  // the distance from its box to the nearest box more than kIsolationWide pieces away. Empty for
   // degree < 2.
   int isolation_pieces = 0;
   std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique, isolation_groups,
-      isolation_supers;
+      isolation_far_wide;
 
   // What only answers off the curve use, built by the first point that asks (off_curve_data).
   Lazy<OffCurveData> off_curve;

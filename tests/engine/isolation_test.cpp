@@ -107,28 +107,19 @@ TEST(Isolation, EveryPieceOfTheCurveLiesInItsBox) {
         EXPECT_GE(group[1], box[1]) << "n " << n << " piece " << j;
         EXPECT_LE(group[2], box[2]) << "n " << n << " piece " << j;
         EXPECT_GE(group[3], box[3]) << "n " << n << " piece " << j;
-        // And the super-group's the group's (from 16 groups on).
-        if (plan.isolation_supers.empty()) continue;
-        const double* super = plan.isolation_supers.data() + 4 * (j / (detail::kIsolationGroup * detail::kIsolationSuper));
-        EXPECT_LE(super[0], group[0]) << "n " << n << " piece " << j;
-        EXPECT_GE(super[1], group[1]) << "n " << n << " piece " << j;
-        EXPECT_LE(super[2], group[2]) << "n " << n << " piece " << j;
-        EXPECT_GE(super[3], group[3]) << "n " << n << " piece " << j;
       }
-      EXPECT_EQ(plan.isolation_supers.size(),
-                K / detail::kIsolationGroup >= 2 * detail::kIsolationSuper ? 4u * (K / detail::kIsolationGroup / detail::kIsolationSuper) : 0u);
       ASSERT_EQ(plan.isolation_groups.size(), 4u * (K / detail::kIsolationGroup));
   });
   RecordProperty("boxes", boxes);
 }
 
-// isolated() looks at the pieces of the groups near the point only: it certifies exactly what the
-// definition does, every box not next to t's farther than the tolerance (after the tests around
+// isolated() looks at the pieces within kIsolationWide of t's only, or at those of the groups near
+// the point: it certifies exactly what the definition does, every box not next to t's farther than the tolerance (after the tests around
 // t, which both share), on points near the curve, where groups are near, and far from it.
 TEST(Isolation, TheGroupsChangeNothingIsolatedCertifies) {
   std::mt19937_64 rng(41);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  int certified = 0, refused = 0;
+  int certified = 0, refused = 0, by_wide = 0;
   for_each_random_plan(rng, 2, 20, [&](int, const detail::PlanData& plan) {
     const int K = plan.isolation_pieces;
     const double* b = plan.isolation_boxes.data();
@@ -151,10 +142,15 @@ TEST(Isolation, TheGroupsChangeNothingIsolatedCertifies) {
       const bool got = detail::isolated(plan, u0, v0, t, distance, tolerance);
       EXPECT_EQ(got, expected) << "t " << t << " off " << off << " tolerance " << tolerance;
       (got ? certified : refused) += 1;
+      // The way isolated() took when the first comparison fails: the pieces within
+      // kIsolationWide of t's alone.
+      by_wide += !(plan.isolation_far[j] - distance > limit) && plan.isolation_far_wide[j] - distance > limit;
     }
   });
   EXPECT_GT(certified, 1000);
   EXPECT_GT(refused, 1000);
+  EXPECT_GT(by_wide, 200);
+  RecordProperty("by_wide", by_wide);
   RecordProperty("certified", certified);
   RecordProperty("refused", refused);
 }
