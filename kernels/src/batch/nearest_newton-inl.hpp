@@ -128,16 +128,10 @@ HWY_NOINLINE void group(D d, const Curve& curve, const NearestNewtonSettings& se
                         double* HWY_RESTRICT t_inout, double* HWY_RESTRICT distance_out) {
   using V = hn::Vec<D>;
   using M = hn::Mask<D>;
-  constexpr std::size_t L = hn::MaxLanes(D());
-  HWY_ALIGN double buffer[L];
-  auto load = [&](const double* p, double padding) {  // the group's lanes, then `padding`
-    if (lanes == L) return hn::LoadU(d, p + first);
-    for (std::size_t l = 0; l < L; ++l) buffer[l] = l < lanes ? p[first + l] : padding;
-    return hn::Load(d, buffer);
-  };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // Padding lanes start at NaN: inactive from the start, they cost no iterations.
-  const V u = load(u_in, 0.0), v = load(v_in, 0.0), t0 = load(t_inout, nan);
+  const V u = hn::LoadGroup(d, u_in, first, lanes, 0.0), v = hn::LoadGroup(d, v_in, first, lanes, 0.0);
+  const V t0 = hn::LoadGroup(d, t_inout, first, lanes, nan);
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
   const V max_step = hn::Set(d, settings.max_step), final_step = hn::Set(d, settings.final_step);
   const V trusted = hn::Set(d, settings.trusted_step);
@@ -214,18 +208,8 @@ HWY_NOINLINE void group(D d, const Curve& curve, const NearestNewtonSettings& se
 
   result = hn::IfThenElse(unsettled, hn::Set(d, nan), result);
   t_out = hn::IfThenElse(unsettled, t0, t_out);
-  if (lanes == L) {
-    hn::StoreU(result, d, distance_out + first);
-    hn::StoreU(t_out, d, t_inout + first);
-    return;
-  }
-  HWY_ALIGN double t_lanes[L], result_lanes[L];
-  hn::Store(t_out, d, t_lanes);
-  hn::Store(result, d, result_lanes);
-  for (std::size_t l = 0; l < lanes; ++l) {
-    distance_out[first + l] = result_lanes[l];
-    t_inout[first + l] = t_lanes[l];
-  }
+  hn::StoreGroup(result, d, distance_out, first, lanes);
+  hn::StoreGroup(t_out, d, t_inout, first, lanes);
 }
 
 // Two vectors side by side on SIMD targets: their dependency chains (Horner's rule is one per

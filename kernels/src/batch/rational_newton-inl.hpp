@@ -274,15 +274,9 @@ HWY_NOINLINE void rational_newton_group(D d, const Curve& curve, const NewtonSet
                                         double* HWY_RESTRICT distance_out) {
   using V = hn::Vec<D>;
   using M = hn::Mask<D>;
-  constexpr std::size_t L = hn::MaxLanes(D());
-  HWY_ALIGN double buffer[L];
-  auto load = [&](const double* p, double padding) {  // the group's lanes, then `padding`
-    if (lanes == L) return hn::LoadU(d, p + first);
-    for (std::size_t l = 0; l < L; ++l) buffer[l] = l < lanes ? p[first + l] : padding;
-    return hn::Load(d, buffer);
-  };
   // Padding lanes start at NaN: inactive from the start, they cost no iterations.
-  const V u = load(u_in, 0.0), v = load(v_in, 0.0), t0 = load(t_inout, std::numeric_limits<double>::quiet_NaN());
+  const V u = hn::LoadGroup(d, u_in, first, lanes, 0.0), v = hn::LoadGroup(d, v_in, first, lanes, 0.0);
+  const V t0 = hn::LoadGroup(d, t_inout, first, lanes, std::numeric_limits<double>::quiet_NaN());
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
   const V trusted = hn::Set(d, settings.trusted_step), max_step = hn::Set(d, settings.max_step);
   const V final_step = hn::Set(d, settings.final_step);
@@ -386,18 +380,9 @@ HWY_NOINLINE void rational_newton_group(D d, const Curve& curve, const NewtonSet
   }
 
   result = hn::IfThenElse(unsettled, hn::Set(d, std::numeric_limits<double>::quiet_NaN()), result);
-  if (lanes == L) {  // a whole group: vector stores; a lane left to the scalar code keeps its t
-    hn::StoreU(result, d, distance_out + first);
-    hn::StoreU(hn::IfThenElse(hn::IsNaN(result), t0, t), d, t_inout + first);
-    return;
-  }
-  HWY_ALIGN double t_lanes[L], result_lanes[L];
-  hn::Store(t, d, t_lanes);
-  hn::Store(result, d, result_lanes);
-  for (std::size_t l = 0; l < lanes; ++l) {
-    distance_out[first + l] = result_lanes[l];
-    if (!std::isnan(result_lanes[l])) t_inout[first + l] = t_lanes[l];
-  }
+  // A lane left to the scalar code keeps its t.
+  hn::StoreGroup(result, d, distance_out, first, lanes);
+  hn::StoreGroup(hn::IfThenElse(hn::IsNaN(result), t0, t), d, t_inout, first, lanes);
 }
 
 // Lanes per group: kNewtonWideVectors SIMD vectors side by side (their dependency chains overlap),
@@ -440,28 +425,14 @@ void rational_slope_batch(const RationalCurve& curve, std::size_t count, const d
   const D d;
   constexpr std::size_t L = hn::MaxLanes(D());
   const HornerCurve horner{curve};
-  HWY_ALIGN double buffer[L];
   for (std::size_t first = 0; first < count; first += L) {
     const std::size_t lanes = std::min(L, count - first);
-    V at;
-    if (lanes == L) {
-      at = hn::LoadU(d, t + first);
-    } else {
-      for (std::size_t l = 0; l < L; ++l) buffer[l] = l < lanes ? t[first + l] : 0.0;
-      at = hn::Load(d, buffer);
-    }
     V px, pdx, py, pdy;
-    horner.slope(d, at, px, pdx, py, pdy);
-    const V* outputs[4] = {&px, &py, &pdx, &pdy};
-    double* targets[4] = {x, y, dx, dy};
-    for (int k = 0; k < 4; ++k) {
-      if (lanes == L) {
-        hn::StoreU(*outputs[k], d, targets[k] + first);
-      } else {
-        hn::Store(*outputs[k], d, buffer);
-        std::copy_n(buffer, lanes, targets[k] + first);
-      }
-    }
+    horner.slope(d, hn::LoadGroup(d, t, first, lanes, 0.0), px, pdx, py, pdy);
+    hn::StoreGroup(px, d, x, first, lanes);
+    hn::StoreGroup(py, d, y, first, lanes);
+    hn::StoreGroup(pdx, d, dx, first, lanes);
+    hn::StoreGroup(pdy, d, dy, first, lanes);
   }
 }
 

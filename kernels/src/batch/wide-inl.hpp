@@ -117,6 +117,26 @@ HWY_INLINE bool AllFalse(T, const Mask<T>& m) {
 
 #undef BEZINV_WIDE_EACH
 
+// One group of a batch: p[first .. first + lanes) (lanes <= MaxLanes), then `padding` in the
+// lanes past them (the last group of a batch that is not a multiple of the group's width).
+template <class T>
+HWY_INLINE Vec<T> LoadGroup(T d, const double* HWY_RESTRICT p, std::size_t first, std::size_t lanes, double padding) {
+  constexpr std::size_t L = MaxLanes(T());
+  if (lanes == L) return LoadU(d, p + first);
+  HWY_ALIGN double buffer[L];
+  for (std::size_t l = 0; l < L; ++l) buffer[l] = l < lanes ? p[first + l] : padding;
+  return Load(d, buffer);
+}
+// The group's first `lanes` lanes to p[first .. first + lanes).
+template <class T>
+HWY_INLINE void StoreGroup(const Vec<T>& a, T d, double* HWY_RESTRICT p, std::size_t first, std::size_t lanes) {
+  constexpr std::size_t L = MaxLanes(T());
+  if (lanes == L) return StoreU(a, d, p + first);
+  HWY_ALIGN double buffer[L];
+  Store(a, d, buffer);
+  for (std::size_t l = 0; l < lanes; ++l) p[first + l] = buffer[l];
+}
+
 }  // namespace bezinv::kernels::HWY_NAMESPACE::wide
 HWY_AFTER_NAMESPACE();
 
