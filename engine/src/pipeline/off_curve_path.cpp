@@ -27,8 +27,9 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
   const double radius = off_curve_radius(normalized_tolerance(plan, options));
 
   // 1. A start per lane, compacted: where the fast path's refinement ended on the segment (a
-  //    local minimum of the distance, often the nearest; its t and distance are
-  //    refine_parameter's already), else near the nearest sample (those lanes after, for Newton).
+  //    local minimum of the distance, often the nearest; its t and distance are the Newton
+  //    kernels' already, refine_grouped), else near the nearest sample (those lanes after, for
+  //    Newton).
   std::array<std::uint8_t, kBatchLanes> lane_of, newton_lane_of;
   std::array<double, kBatchLanes> u, v, t, distance;
   std::size_t m = 0, newton = 0;
