@@ -219,14 +219,14 @@ const CurveInputs& curve_inputs(int n) {
 }
 
 // items_per_second = points refined per second.
-void BM_KernelRationalNewton(benchmark::State& state, const Implementation* impl, int n, bool by_horner) {
+void BM_KernelRationalNewton(benchmark::State& state, const Implementation* impl, int n) {
   const CurveInputs& in = curve_inputs(n);
   const NewtonSettings settings{60, 0.125, 1e-6, 40, 1e-12};  // the engine's (tolerances.hpp)
   std::vector<double> t(kBatch), distance(kBatch);
   std::size_t b = 0;
   for (auto _ : state) {
     t = in.t[b];
-    impl->rational_newton(in.curve(b, by_horner), settings, kBatch, in.u[b].data(), in.v[b].data(), t.data(),
+    impl->rational_newton(in.curve(b, false), settings, kBatch, in.u[b].data(), in.v[b].data(), t.data(),
                           distance.data());
     benchmark::DoNotOptimize(distance.data());
     b = (b + 1) % in.t.size();
@@ -312,14 +312,12 @@ int register_kernels() {
         benchmark::RegisterBenchmark(benchmark_name("BM_KernelBezoutMatrix", impl, n).c_str(),
                                      BM_KernelBezoutMatrix, impl, n);
     }
-  // Newton's method with its jets by de Casteljau (the fast path's) and by Horner's rule, the
-  // off-curve path's Newton kernel, and the slope, at the pipeline's benchmark degrees.
+  // Newton's method with its jets by de Casteljau (the fast path's), the off-curve path's Newton
+  // kernel on Horner's jets, and the slope, at the pipeline's benchmark degrees.
   for (const Implementation* impl : available_implementations())
     for (int n : {2, 3, 4, 5, 6, 8, 15, 20}) {
       benchmark::RegisterBenchmark(benchmark_name("BM_KernelRationalNewton_casteljau", impl, n).c_str(),
-                                   BM_KernelRationalNewton, impl, n, false);
-      benchmark::RegisterBenchmark(benchmark_name("BM_KernelRationalNewton_horner", impl, n).c_str(),
-                                   BM_KernelRationalNewton, impl, n, true);
+                                   BM_KernelRationalNewton, impl, n);
       benchmark::RegisterBenchmark(benchmark_name("BM_KernelNearestNewton", impl, n).c_str(), BM_KernelNearestNewton,
                                    impl, n);
       benchmark::RegisterBenchmark(benchmark_name("BM_KernelRationalSlope", impl, n).c_str(), BM_KernelRationalSlope,

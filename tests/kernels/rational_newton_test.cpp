@@ -1,7 +1,7 @@
 // The lane-batched nearest-point Newton kernels, every available implementation, degrees 1..24,
-// batch sizes around the vector widths: Implementation::rational_newton with its jets by de
-// Casteljau and by Horner's rule (RationalCurve::horner), and the off-curve path's
-// Implementation::nearest_newton, in turn. Expected parameters come from
+// batch sizes around the vector widths: Implementation::rational_newton (de Casteljau's jets, the
+// scalar refinement's steps) and the off-curve path's Implementation::nearest_newton (Horner's
+// jets, RationalCurve::horner), in turn. Expected parameters come from
 // construction: points made exactly (GMP) at a known t, on the curve, along its normal, or past an
 // end along its tangent. tests/engine/refine_test.cpp checks the de Casteljau jets against the
 // engine's scalar refinement bit for bit; the Horner jets give every implementation the same bits.
@@ -29,12 +29,10 @@ using test_support::kNaN;
 constexpr NewtonSettings kSettings{60, 0.125, 1e-6, 40, 1e-12};
 constexpr NearestNewtonSettings kNearestSettings{60, 0.125, 1e-6, 40, 1e-9};
 
-// Which kernel a test runs: rational_newton by de Casteljau or by Horner, or nearest_newton.
-enum class Variant { casteljau, horner, nearest };
-constexpr Variant kVariants[] = {Variant::casteljau, Variant::horner, Variant::nearest};
-std::string name(Variant variant) {
-  return variant == Variant::casteljau ? "" : (variant == Variant::horner ? " Horner" : " nearest_newton");
-}
+// Which kernel a test runs: rational_newton or nearest_newton.
+enum class Variant { casteljau, nearest };
+constexpr Variant kVariants[] = {Variant::casteljau, Variant::nearest};
+std::string name(Variant variant) { return variant == Variant::casteljau ? "" : " nearest_newton"; }
 
 // A random rational Bezier curve: control points in [-1, 1]^2, weights in [0.5, 2], one denominator
 // (or with `separate`, x and y each their own).
@@ -104,8 +102,7 @@ struct Lanes {
       implementation.nearest_newton(c.view(true), kNearestSettings, t.size(), u.data(), v.data(), t.data(),
                                     distance.data());
     else
-      implementation.rational_newton(c.view(variant == Variant::horner), kSettings, t.size(), u.data(), v.data(),
-                                     t.data(), distance.data());
+      implementation.rational_newton(c.view(), kSettings, t.size(), u.data(), v.data(), t.data(), distance.data());
   }
 };
 
@@ -248,18 +245,18 @@ TEST(RationalNewton, LeavesUnusableStartsToTheCaller) {
     if (variant == Variant::nearest)
       implementation->nearest_newton(c.view(true), kNearestSettings, 0, &t, &t, &t, &distance);
     else
-      implementation->rational_newton(c.view(variant == Variant::horner), kSettings, 0, &t, &t, &t, &distance);
+      implementation->rational_newton(c.view(), kSettings, 0, &t, &t, &t, &distance);
     EXPECT_EQ(t, 0.5);
     EXPECT_EQ(distance, 7.0);
   }
 }
 
-// With Horner's jets no implementation has the scalar code's bits to match, but all of them give
-// the same bits (rational_newton: no fused multiply-add; nearest_newton: the same fused ones on
-// every target; the same operations in the same order per lane), whatever the lane's group:
-// off-curve points from starts a sampling search would give, one denominator and two.
+// With Horner's jets (nearest_newton) no implementation has the scalar code's bits to match, but
+// all of them give the same bits (the same fused multiply-adds on every target, the same
+// operations in the same order per lane), whatever the lane's group: off-curve points from starts
+// a sampling search would give, one denominator and two.
 TEST(RationalNewton, HornerJetsGiveEveryImplementationTheSameBits) {
-  for (const Variant variant : {Variant::horner, Variant::nearest})
+  for (const Variant variant : {Variant::nearest})
   for (const bool separate : {false, true}) {
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> unit(0.0, 1.0);

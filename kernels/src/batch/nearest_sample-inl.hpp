@@ -31,15 +31,14 @@ void nearest_sample_batch(const double* samples, int last, int stride, std::size
   using V = hn::Vec<D>;
   const D d;
   constexpr std::size_t L = hn::MaxLanes(D());
-  HWY_ALIGN double lane_u[L], lane_v[L], best[L], at[L];
-  const auto distance2 = [&](int k, std::size_t l) {
-    const double dx = samples[2 * k] - lane_u[l], dy = samples[2 * k + 1] - lane_v[l];
-    return dx * dx + dy * dy;
-  };
+  HWY_ALIGN double best[L], at[L];
   for (std::size_t first = 0; first < count; first += L) {
     const std::size_t lanes = std::min(L, count - first);
-    for (std::size_t l = 0; l < L; ++l) lane_u[l] = u[first + std::min(l, lanes - 1)], lane_v[l] = v[first + std::min(l, lanes - 1)];
-    const V pu = hn::Load(d, lane_u), pv = hn::Load(d, lane_v);
+    const auto distance2 = [&](int k, std::size_t l) {
+      const double dx = samples[2 * k] - u[first + l], dy = samples[2 * k + 1] - v[first + l];
+      return dx * dx + dy * dy;
+    };
+    const V pu = hn::LoadGroup(d, u, first, lanes, 0.0), pv = hn::LoadGroup(d, v, first, lanes, 0.0);
     V nearest = hn::Set(d, std::numeric_limits<double>::infinity()), index = hn::Zero(d);
     for (int k = 0; k <= last; k += stride) {
       const V dx = hn::Sub(hn::Set(d, samples[2 * k]), pu), dy = hn::Sub(hn::Set(d, samples[2 * k + 1]), pv);

@@ -7,9 +7,8 @@
 // (engine/src/refine.cpp: de Casteljau on the four polynomials, the jet read off the last three
 // points, the Newton step of f(t) = (P(t) - P0) . P'(t)). No fused multiply-add is used and the
 // file is compiled with -ffp-contract=off, so a lane settled here has the very bits the scalar
-// code would have produced from the same start, on every instruction set. With the curve's
-// Horner coefficients (RationalCurve::horner) the same iterations run on jets by Horner's rule
-// (HornerCurve): O(n) a jet, other bits than the scalar code's, the same on every instruction set.
+// code would have produced from the same start, on every instruction set. The file also holds
+// rational_slope: P and P' by Horner's rule (HornerCurve), as the engine's curve_slope_horner.
 #if defined(BEZINV_KERNELS_BATCH_RATIONAL_NEWTON_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef BEZINV_KERNELS_BATCH_RATIONAL_NEWTON_INL_H_
 #undef BEZINV_KERNELS_BATCH_RATIONAL_NEWTON_INL_H_
@@ -159,7 +158,7 @@ struct CasteljauCurve {
   }
 };
 
-// By Horner's rule on curve.horner (RationalCurve), as the engine's curve_jet_horner:
+// By Horner's rule on curve.horner (RationalCurve), as the engine's curve_slope_horner:
 //     sum a_i (1-t)^(m-i) t^i = (1-t)^m sum a_i r^i,   r = t / (1-t)   (t <= 1/2),
 //                             = t^m sum a_i r^(m-i),    r = (1-t) / t   (above),
 // r <= 1 either way, so the sum stays as well conditioned as the Bernstein form. Each lane picks
@@ -229,31 +228,6 @@ struct HornerCurve {
     levels<2>(d, t, value);
     quotient(value, 0, 1, x, dx);
     quotient(value, 2, 3, y, dy);
-  }
-
-  // P, P', P'' (the engine's curve_jet_horner): x'' = (num'' - 2 den' x' - den'' x) / den.
-  template <class D, class V = hn::Vec<D>>
-  HWY_INLINE void jet(D d, const V& t, V& x, V& dx, V& ddx, V& y, V& dy, V& ddy) const {
-    V value[3][4];
-    levels<3>(d, t, value);
-    const V two = hn::Set(d, 2.0);
-    const auto second = [&](int num, int den, const V& q, const V& dq) {
-      return hn::Div(hn::Sub(hn::Sub(value[2][num], hn::Mul(hn::Mul(two, value[1][den]), dq)), hn::Mul(value[2][den], q)),
-                     value[0][den]);
-    };
-    quotient(value, 0, 1, x, dx);
-    ddx = second(0, 1, x, dx);
-    quotient(value, 2, 3, y, dy);
-    ddy = second(2, 3, y, dy);
-  }
-
-  template <class D, class V = hn::Vec<D>>
-  HWY_INLINE V distance(D d, const V& u, const V& v, const V& t, hn::Mask<D>& plain) const {
-    V r, value[4];
-    const hn::Mask<D> low = ratio(d, t, r);
-    level(d, 0, r, low, value);
-    // The common factor base^n cancels in the quotients.
-    return plain_length(hn::Sub(hn::Div(value[0], value[1]), u), hn::Sub(hn::Div(value[2], value[3]), v), plain);
   }
 };
 
@@ -404,11 +378,6 @@ void rational_newton_groups(const Curve& curve, const NewtonSettings& settings, 
 void rational_newton_batch(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                            const double* u, const double* v, double* t, double* distance) {
   for (std::size_t l = 0; l < count; ++l) distance[l] = std::numeric_limits<double>::quiet_NaN();
-  if (curve.horner) {
-    check_size<kRationalNewtonMinDegree, kRationalNewtonMaxDegree>("rational_newton", curve.degree);  // one copy for every degree: Horner keeps no array of points in registers
-    rational_newton_groups<HornerCurve, kNewtonWideVectors<2>>(HornerCurve{curve}, settings, count, u, v, t, distance);
-    return;
-  }
   dispatch_size<kRationalNewtonMinDegree, kRationalNewtonMaxDegree>("rational_newton", curve.degree, [&](auto size) {
     constexpr int N = decltype(size)::value;
     rational_newton_groups<CasteljauCurve<N>, kNewtonWideVectors<N>>(CasteljauCurve<N>{curve}, settings, count, u, v,

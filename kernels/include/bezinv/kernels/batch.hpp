@@ -47,12 +47,13 @@ inline constexpr int kSpaceCheckMaxDegree = kMaxBatchSize;
 // Bernstein basis of degree `degree` (kRationalNewtonMinDegree..kRationalNewtonMaxDegree),
 // degree + 1 coefficients each.
 //
-// With `horner` set, the kernel evaluates by Horner's rule instead (O(n) a jet where de Casteljau
-// is O(n^2)), from the layout of the engine's plan.horner: per polynomial (x_num, x_den, y_num,
-// y_den) 3 * degree numbers, c_i C(n,i) (i = 0..n), then the first derivative's n (c_{i+1} - c_i)
-// C(n-1,i), then the second's n (n-1) (c_{i+2} - 2 c_{i+1} + c_i) C(n-2,i). Other rounding than
-// de Casteljau's: the answers are not the scalar refinement's bits (the engine's off-curve starts
-// take it, whose answers the certified search proves, not compares).
+// `horner`, for the kernels that evaluate by Horner's rule (rational_slope, nearest_newton: O(n) a
+// jet where de Casteljau is O(n^2); rational_newton ignores it), is the layout of the engine's
+// plan.horner: per polynomial (x_num, x_den, y_num, y_den) 3 * degree numbers, c_i C(n,i)
+// (i = 0..n), then the first derivative's n (c_{i+1} - c_i) C(n-1,i), then the second's n (n-1)
+// (c_{i+2} - 2 c_{i+1} + c_i) C(n-2,i). Other rounding than de Casteljau's: those kernels' answers
+// are not the scalar refinement's bits (the engine's off-curve path takes them, and the certified
+// search proves, not compares, what they find).
 struct RationalCurve {
   int degree;
   const double* x_num;
@@ -155,8 +156,7 @@ struct Implementation {
   // moved t by a few ulps). A lane the kernel does not settle (start not in [0, 1], or a distance that is not
   // finite or that the scalar code would compute with std::hypot) keeps its t and gets
   // distance[l] = NaN: the caller runs the scalar code for it. Arrays have `count` entries;
-  // curve.degree in [kRationalNewtonMinDegree, kRationalNewtonMaxDegree]. With curve.horner the
-  // same steps on the jets by Horner's rule: the same safeguards, other rounding (RationalCurve).
+  // curve.degree in [kRationalNewtonMinDegree, kRationalNewtonMaxDegree].
   void (*rational_newton)(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                           const double* u, const double* v, double* t, double* distance);
 
