@@ -187,6 +187,46 @@ TEST(RationalNewton, OffCurvePointsAlongTheNormal) {
   }
 }
 
+// A batch where half the lanes settle at once (points on the curve, started at their t) and half
+// are far from their roots (points off the curve, started 0.2 away): rational_newton runs such
+// groups in two rounds, the lanes still iterating after the first regrouped (rational_newton-inl.hpp,
+// rational_newton_groups). Every lane must end exactly as it does alone, in a batch of one (one
+// round), whatever its place among the others; and batches longer than a round's 64 lanes too.
+TEST(RationalNewton, ALaneEndsAsAloneWhateverItsGroup) {
+  for (const Implementation* implementation : available_implementations()) {
+    std::mt19937_64 rng(31);
+    std::uniform_real_distribution<double> parameter(0.05, 0.95), side(-0.05, 0.05);
+    for (int n = 2; n <= 12; n += test_support::kSanitizerThinning) {
+      const TestCurve c = random_curve(n, rng, /*separate=*/n % 3 == 0);
+      for (const std::size_t count : {64u, 37u, 130u}) {
+        SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " count " + std::to_string(count));
+        Lanes batch;
+        for (std::size_t l = 0; l < count; ++l) {
+          const double t_star = parameter(rng);
+          const Exact p = at(c, t_star);
+          if (l % 2 == 0) {
+            batch.add(p.x, p.y, t_star);
+          } else {
+            const double start = t_star < 0.5 ? t_star + 0.2 : t_star - 0.2;
+            batch.add(p.x + side(rng), p.y + side(rng), l % 10 == 1 ? 1.5 : start);  // 1.5: left to the caller
+          }
+        }
+        Lanes alone = batch;
+        batch.run(*implementation, c, Variant::casteljau);
+        for (std::size_t l = 0; l < count; ++l) {
+          Lanes one;
+          one.add(alone.u[l], alone.v[l], alone.t[l]);
+          one.run(*implementation, c, Variant::casteljau);
+          EXPECT_TRUE(test_support::same_bits(batch.t[l], one.t[0])) << "lane " << l << ": " << sci(batch.t[l])
+                                                                     << " alone " << sci(one.t[0]);
+          EXPECT_TRUE(test_support::same_bits(batch.distance[l], one.distance[0]))
+              << "lane " << l << ": " << sci(batch.distance[l]) << " alone " << sci(one.distance[0]);
+        }
+      }
+    }
+  }
+}
+
 // A point past the end t = 1 along the tangent there: the nearest point of the segment is the end
 // itself, and the iteration must stop there exactly (clamped), at distance |delta|.
 TEST(RationalNewton, ClampsAtTheEndsOfTheSegment) {

@@ -231,6 +231,9 @@ struct HornerCurve {
   }
 };
 
+// rational_newton_groups' first round, in iterations.
+inline constexpr int kNewtonFirstRound = 2;
+
 // The engine's refine_parameter(..., stay_on_segment = true), one lane per point, each lane through
 // exactly the scalar code's sequence of steps (the masks only say which lanes are still at which
 // point of it):
@@ -241,11 +244,17 @@ struct HornerCurve {
 //   measured before it, when it moves t by at most 4 eps max(1, |t|) and P by |P'| moved <= 4 eps,
 //   measured at the new t when only the first holds); a larger one is halved until the distance does not increase (at
 //   most max_halvings times; if none is found, or it does not move t, the iteration stops).
+// With `pending` (the first of rational_newton_groups' two rounds): after kNewtonFirstRound
+// iterations, where at most three quarters of the group's lanes are still iterating and one of
+// them is still far from its root (else the group goes on to the end, as without), the group
+// stops; a lane still iterating then gets its t so far in pending (the others NaN), keeps its t
+// as it came, and its distance is the second round's to write. Returns whether there is such a
+// lane. Without, `iterations` is what remains of max_iterations and every lane finishes as above.
 template <class Curve, class D>
-HWY_NOINLINE void rational_newton_group(D d, const Curve& curve, const NewtonSettings& settings,
+HWY_NOINLINE bool rational_newton_group(D d, const Curve& curve, const NewtonSettings& settings, int iterations,
                                         std::size_t first, std::size_t lanes, const double* HWY_RESTRICT u_in,
                                         const double* HWY_RESTRICT v_in, double* HWY_RESTRICT t_inout,
-                                        double* HWY_RESTRICT distance_out) {
+                                        double* HWY_RESTRICT distance_out, double* HWY_RESTRICT pending) {
   using V = hn::Vec<D>;
   using M = hn::Mask<D>;
   // Padding lanes start at NaN: inactive from the start, they cost no iterations.
@@ -275,7 +284,22 @@ HWY_NOINLINE void rational_newton_group(D d, const Curve& curve, const NewtonSet
     active = hn::AndNot(lanes, active);
   };
 
-  for (int iteration = 0; iteration < settings.max_iterations && !hn::AllFalse(d, active); ++iteration) {
+  M stopped = hn::FirstN(d, 0);  // the lanes a first round leaves pending
+  V last_step = zero;            // the Newton step of the iteration before
+  double* const pending_out = pending;
+  const bool first_round = pending != nullptr;
+  for (int iteration = 0; iteration < iterations && !hn::AllFalse(d, active); ++iteration) {
+    if (pending && iteration == kNewtonFirstRound) {
+      // Stopped where that saves iterations: a quarter of the lanes settled, and one still far
+      // from its root (its last Newton step above 1e-4: several iterations to go).
+      const M far = hn::And(active, hn::Gt(hn::Abs(last_step), hn::Set(d, 1e-4)));
+      if (!hn::AllFalse(d, far) && 4 * hn::CountTrue(d, active) <= 3 * lanes) {
+        stopped = active;
+        active = hn::FirstN(d, 0);
+        break;
+      }
+      pending = nullptr;  // most of the group still iterating: on to the end, as one round
+    }
     V x, dx, ddx, y, dy, ddy;
     curve.jet(d, t, x, dx, ddx, y, dy, ddy);
     const V ex = hn::Sub(x, u), ey = hn::Sub(y, v);
@@ -291,6 +315,7 @@ HWY_NOINLINE void rational_newton_group(D d, const Curve& curve, const NewtonSet
     const V g2 = hn::IfThenElse(hn::Gt(slope, zero), slope, speed2);  // Gauss-Newton where the distance is concave
     finish(hn::And(active, hn::Not(hn::And(hn::Gt(g2, zero), hn::IsFinite(g1)))), dist);
     V step = hn::Min(hn::Max(hn::Div(hn::Neg(g1), g2), hn::Neg(max_step)), max_step);
+    last_step = step;
 
     // Small steps: taken as Newton gives them.
     const M small = hn::And(active, hn::Le(hn::Abs(step), trusted));
@@ -342,6 +367,12 @@ HWY_NOINLINE void rational_newton_group(D d, const Curve& curve, const NewtonSet
     }
     finish(hn::And(hn::And(searched, active), hn::Not(accepted)), dist);  // no descent found: stop here
   }
+  // A lane still iterating at the end of the first round: its t so far, for the second. (An
+  // active lane carries nothing else from one iteration to the next: the jet at t renews `dist`
+  // and `current`.)
+  if (first_round)
+    hn::StoreGroup(hn::IfThenElse(stopped, t, hn::Set(d, std::numeric_limits<double>::quiet_NaN())), d, pending_out,
+                   first, lanes);
   // Out of iterations: the distance at hand, or measured at the last t.
   finish(hn::And(active, current), dist);
   final_distance = hn::Or(final_distance, active);
@@ -356,7 +387,8 @@ HWY_NOINLINE void rational_newton_group(D d, const Curve& curve, const NewtonSet
   result = hn::IfThenElse(unsettled, hn::Set(d, std::numeric_limits<double>::quiet_NaN()), result);
   // A lane left to the scalar code keeps its t.
   hn::StoreGroup(result, d, distance_out, first, lanes);
-  hn::StoreGroup(hn::IfThenElse(hn::IsNaN(result), t0, t), d, t_inout, first, lanes);
+  hn::StoreGroup(hn::IfThenElse(hn::Or(stopped, hn::IsNaN(result)), t0, t), d, t_inout, first, lanes);
+  return !hn::AllFalse(d, stopped);
 }
 
 // Lanes per group: kNewtonWideVectors SIMD vectors side by side (their dependency chains overlap),
@@ -366,13 +398,48 @@ HWY_NOINLINE void rational_newton_group(D d, const Curve& curve, const NewtonSet
 template <int N>
 inline constexpr int kNewtonWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128 || N > 24) ? 1 : 2;
 
+// In two rounds, kBatch lanes at a time: every group for kNewtonFirstRound iterations, then the
+// lanes still iterating, compacted into groups of their own, for the rest. A lane on the curve
+// settles in one or two iterations and one off it may take ten: in one round, a group with both
+// iterates as long as its slowest lane (a batch of points half on the curve, half off, everywhere).
+// Each lane computes exactly what it would in one round (rational_newton_group says why), so the
+// bits are the same.
 template <class Curve, int kWideVectors>
 void rational_newton_groups(const Curve& curve, const NewtonSettings& settings, std::size_t count, const double* u,
                             const double* v, double* t, double* distance) {
   using Wide = wide::Tag<kWideVectors>;
   constexpr std::size_t LW = wide::MaxLanes(Wide());
-  for (std::size_t first = 0; first < count; first += LW)
-    rational_newton_group(Wide(), curve, settings, first, std::min(LW, count - first), u, v, t, distance);
+  if (LW == 1 || settings.max_iterations <= kNewtonFirstRound) {  // one lane a group: nothing waits
+    for (std::size_t first = 0; first < count; first += LW)
+      rational_newton_group(Wide(), curve, settings, settings.max_iterations, first, std::min(LW, count - first), u, v,
+                            t, distance, nullptr);
+    return;
+  }
+  constexpr std::size_t kBatch = 64;
+  HWY_ALIGN double pending[kBatch], pu[kBatch], pv[kBatch], pt[kBatch], pd[kBatch];
+  std::size_t lane_of[kBatch];
+  for (std::size_t start = 0; start < count; start += kBatch) {
+    const std::size_t lanes = std::min(kBatch, count - start);
+    bool any = false;
+    for (std::size_t first = 0; first < lanes; first += LW)
+      any |= rational_newton_group(Wide(), curve, settings, settings.max_iterations, first,
+                                   std::min(LW, lanes - first), u + start, v + start, t + start, distance + start,
+                                   pending);
+    if (!any) continue;
+    std::size_t m = 0;
+    for (std::size_t l = 0; l < lanes; ++l)
+      if (!std::isnan(pending[l])) lane_of[m] = l, pu[m] = u[start + l], pv[m] = v[start + l], pt[m] = pending[l], ++m;
+    for (std::size_t first = 0; first < m; first += LW)
+      rational_newton_group(Wide(), curve, settings, settings.max_iterations - kNewtonFirstRound, first,
+                            std::min(LW, m - first), pu, pv, pt, pd, nullptr);
+    // A lane given back to the scalar code keeps the t it came with (still in t), not the first
+    // round's.
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t l = start + lane_of[k];
+      distance[l] = pd[k];
+      if (!std::isnan(pd[k])) t[l] = pt[k];
+    }
+  }
 }
 
 void rational_newton_batch(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,

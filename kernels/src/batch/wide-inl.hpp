@@ -115,6 +115,13 @@ HWY_INLINE bool AllFalse(T, const Mask<T>& m) {
   return true;
 }
 
+template <class T>
+HWY_INLINE std::size_t CountTrue(T, const Mask<T>& m) {
+  std::size_t count = 0;
+  for (int g = 0; g < T::kVectors; ++g) count += hn::CountTrue(typename T::D(), m.m[g]);
+  return count;
+}
+
 #undef BEZINV_WIDE_EACH
 
 // One group of a batch: p[first .. first + lanes) (lanes <= MaxLanes), then `padding` in the
