@@ -286,19 +286,17 @@ HWY_NOINLINE bool rational_newton_group(D d, const Curve& curve, const NewtonSet
 
   M stopped = hn::FirstN(d, 0);  // the lanes a first round leaves pending
   V last_step = zero;            // the Newton step of the iteration before
-  double* const pending_out = pending;
-  const bool first_round = pending != nullptr;
   for (int iteration = 0; iteration < iterations && !hn::AllFalse(d, active); ++iteration) {
     if (pending && iteration == kNewtonFirstRound) {
       // Stopped where that saves iterations: a quarter of the lanes settled, and one still far
-      // from its root (its last Newton step above 1e-4: several iterations to go).
+      // from its root (its last Newton step above 1e-4: several iterations to go). Otherwise on
+      // to the end, as in one round.
       const M far = hn::And(active, hn::Gt(hn::Abs(last_step), hn::Set(d, 1e-4)));
       if (!hn::AllFalse(d, far) && 4 * hn::CountTrue(d, active) <= 3 * lanes) {
         stopped = active;
         active = hn::FirstN(d, 0);
         break;
       }
-      pending = nullptr;  // most of the group still iterating: on to the end, as one round
     }
     V x, dx, ddx, y, dy, ddy;
     curve.jet(d, t, x, dx, ddx, y, dy, ddy);
@@ -370,9 +368,9 @@ HWY_NOINLINE bool rational_newton_group(D d, const Curve& curve, const NewtonSet
   // A lane still iterating at the end of the first round: its t so far, for the second. (An
   // active lane carries nothing else from one iteration to the next: the jet at t renews `dist`
   // and `current`.)
-  if (first_round)
-    hn::StoreGroup(hn::IfThenElse(stopped, t, hn::Set(d, std::numeric_limits<double>::quiet_NaN())), d, pending_out,
-                   first, lanes);
+  if (pending)
+    hn::StoreGroup(hn::IfThenElse(stopped, t, hn::Set(d, std::numeric_limits<double>::quiet_NaN())), d, pending, first,
+                   lanes);
   // Out of iterations: the distance at hand, or measured at the last t.
   finish(hn::And(active, current), dist);
   final_distance = hn::Or(final_distance, active);
