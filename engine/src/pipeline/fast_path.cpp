@@ -65,13 +65,13 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
 void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
                     BatchWorkspace& w) {
   constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
+  const kernels::RationalCurve curve = kernel_curve(plan);
   std::array<std::uint8_t, kBatchLanes> lane_of;
   std::size_t near = 0;
   for (std::size_t l = 0; l < count; ++l)
     if (!(w.estimate[l] > kOnCurveEstimate)) lane_of[near++] = static_cast<std::uint8_t>(l);
   if (near == count) {
-    kernel.rational_newton(kernel_curve(plan), kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(),
-                           w.distance.data());
+    kernel.rational_newton(curve, kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(), w.distance.data());
     return;
   }
   std::size_t far = near;
@@ -82,7 +82,7 @@ void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan,
     const std::size_t l = lane_of[k];
     u[k] = w.u[l], v[k] = w.v[l], t[k] = w.t_refined[l];
   }
-  kernel.rational_newton(kernel_curve(plan), kNewtonSettings, near, u.data(), v.data(), t.data(), distance.data());
+  kernel.rational_newton(curve, kNewtonSettings, near, u.data(), v.data(), t.data(), distance.data());
   kernel.nearest_newton(kernel_curve(plan, /*horner=*/true), kNearestNewtonSettings, count - near, u.data() + near,
                         v.data() + near, t.data() + near, distance.data() + near);
   // Those that ended at an end, again from their start, compacted.
@@ -95,7 +95,7 @@ void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan,
     const std::size_t k = again_of[e], l = lane_of[k];
     eu[e] = u[k], ev[e] = v[k], et[e] = w.t_refined[l];
   }
-  if (ends > 0) kernel.rational_newton(kernel_curve(plan), kNewtonSettings, ends, eu.data(), ev.data(), et.data(), ed.data());
+  if (ends > 0) kernel.rational_newton(curve, kNewtonSettings, ends, eu.data(), ev.data(), et.data(), ed.data());
   for (std::size_t e = 0; e < ends; ++e) t[again_of[e]] = et[e], distance[again_of[e]] = ed[e];
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t l = lane_of[k];
