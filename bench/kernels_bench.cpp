@@ -96,7 +96,7 @@ void BM_KernelNullVectorSeed(benchmark::State& state, const Implementation* impl
   std::vector<double> z(n * stride), defect(stride), residual(stride);
   std::size_t b = 0;
   for (auto _ : state) {
-    impl->null_vector_seed(n, kBatch, stride, in.batches[b].data(), z.data(), defect.data(), residual.data());
+    impl->null_vector_seed(n, kBatch, stride, in.batches[b].data(), z.data(), defect.data(), residual.data(), 1.0);
     benchmark::DoNotOptimize(z.data());
     benchmark::ClobberMemory();
     b = (b + 1) % in.batches.size();
@@ -146,11 +146,11 @@ void BM_KernelBezoutSeed(benchmark::State& state, const Implementation* impl, in
   for (auto _ : state) {
     if (formed) {
       impl->bezout_null_vector_seed(n, kBatch, stride, B0.data(), Bx.data(), By.data(), nullptr, u.data() + first,
-                                    v.data() + first, z.data(), defect.data(), residual.data(), poison.data());
+                                    v.data() + first, z.data(), defect.data(), residual.data(), poison.data(), 1.0);
     } else {
       impl->bezout_matrix(n, kBatch, stride, B0.data(), Bx.data(), By.data(), nullptr, u.data() + first,
                           v.data() + first, B.data(), poison.data());
-      impl->null_vector_seed(n, kBatch, stride, B.data(), z.data(), defect.data(), residual.data());
+      impl->null_vector_seed(n, kBatch, stride, B.data(), z.data(), defect.data(), residual.data(), 1.0);
     }
     benchmark::DoNotOptimize(z.data());
     benchmark::ClobberMemory();

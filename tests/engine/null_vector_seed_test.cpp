@@ -49,12 +49,12 @@ TEST(NullVectorSeed, RefinesToTheKnownParameterOnBezoutMatrices) {
           }
           for (const kernels::Implementation* impl : kernels::available_implementations()) {
             if (n <= kernels::kNullVectorSeedMaxSize) {
-              impl->null_vector_seed(n, kLanes, stride, B.data(), z.data(), defect.data(), residual.data());
+              impl->null_vector_seed(n, kLanes, stride, B.data(), z.data(), defect.data(), residual.data(), 1.0);
             } else {
               std::vector<double> poison(kLanes);
               impl->bezout_null_vector_seed(n, kLanes, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                             plan.common_denominator ? nullptr : plan.Bxy.data(), u.data(), v.data(),
-                                            z.data(), defect.data(), residual.data(), poison.data());
+                                            z.data(), defect.data(), residual.data(), poison.data(), 1.0);
             }
             for (std::size_t l = 0; l < kLanes; ++l) {
               std::vector<double> lane(n);

@@ -268,13 +268,13 @@ TEST(BatchImplementations, SizesOutsideTheCompiledRangesThrow) {
           "null_vector", kNullVectorMinSize, kNullVectorMaxSize);
     for (int n : {kNullVectorSeedMinSize - 1, kNullVectorSeedMaxSize + 1})
       expect_out_of_range(
-          [&] { impl->null_vector_seed(n, count, stride, B.data(), z.data(), defect.data(), estimate.data()); },
+          [&] { impl->null_vector_seed(n, count, stride, B.data(), z.data(), defect.data(), estimate.data(), 1.0); },
           "null_vector_seed", kNullVectorSeedMinSize, kNullVectorSeedMaxSize);
     for (int n : {kBezoutNullVectorSeedMinSize - 1, kBezoutNullVectorSeedMaxSize + 1})
       expect_out_of_range(
           [&] {
             impl->bezout_null_vector_seed(n, count, stride, B.data(), B.data(), B.data(), nullptr, u.data(), v.data(),
-                                          z.data(), defect.data(), estimate.data(), poison.data());
+                                          z.data(), defect.data(), estimate.data(), poison.data(), 1.0);
           },
           "bezout_null_vector_seed", kBezoutNullVectorSeedMinSize, kBezoutNullVectorSeedMaxSize);
     for (int n : {kBezoutMatrixMinSize - 1, kBezoutMatrixMaxSize + 1})
@@ -432,7 +432,7 @@ TEST(BatchNullVector, SeedWithoutPivoting) {
         for (int r = 0; r < n; ++r)
           for (int c = r + 1; c < n; ++c)
             for (std::size_t l = 0; l < a.stride; ++l) a.B[(r * n + c) * a.stride + l] = kNaN;
-        impl->null_vector_seed(n, count, a.stride, a.B.data(), a.z.data(), a.defect.data(), a.estimate.data());
+        impl->null_vector_seed(n, count, a.stride, a.B.data(), a.z.data(), a.defect.data(), a.estimate.data(), 1.0);
         for (std::size_t l = count; l < a.stride; ++l) {
           EXPECT_TRUE(std::isnan(a.defect[l]) && std::isnan(a.estimate[l]) && std::isnan(a.z[l])) << "lane " << l;
         }

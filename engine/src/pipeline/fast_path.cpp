@@ -53,7 +53,8 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
 
 // Lane-batched refinement of every lane from t_algebraic (t_refined, distance), in two groups by
 // B's sigma_min estimate (||B z|| / ||B||): the lanes whose seed put them on the curve (at rounding
-// level, or NaN where the formula gave t: no B) by rational_newton, refine.cpp's Newton bit for
+// level, or NaN where the formula gave t: no B, or where the seed did not settle: no t either) by
+// rational_newton, refine.cpp's Newton bit for
 // bit; the others, off the curve (beyond ~1e-12 of it), by nearest_newton, the off-curve path's
 // cheaper kernel, whose t the isolation certificate or the off-curve path's proofs then take.
 // Except where that ends at an end of the segment: whether a point by an end is within the
@@ -157,10 +158,11 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
     std::array<double, kBatchLanes> poison;
     kernel.bezout_null_vector_seed(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                    bilinear_coefficients(plan), w.u.data(), w.v.data(), w.z.data(), w.defect.data(),
-                                   w.estimate.data(), poison.data());
+                                   w.estimate.data(), poison.data(), kFastPathMaxDefect);
     mark_overflowing_b(plan, points, poison.data(), count, w, results);
   } else if (two_passes) {
-    kernel.null_vector_seed(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data());
+    kernel.null_vector_seed(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),
+                            kFastPathMaxDefect);
   } else {
     kernel.null_vector(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),
                        w.second.data());

@@ -128,13 +128,13 @@ void formula_or_seed(const PlanData& plan, const Point* points, PointResult* res
   if (n >= kFormedBMinDegree) {
     kernel.bezout_null_vector_seed(n, seeded, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                    bilinear_coefficients(plan), u.data(), v.data(), w.gap_z.data(),
-                                   w.gap_defect.data(), w.gap_estimate.data(), poison.data());
+                                   w.gap_defect.data(), w.gap_estimate.data(), poison.data(), kFastPathMaxDefect);
   } else {
     kernel.bezout_matrix(n, seeded, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                          bilinear_coefficients(plan), u.data(), v.data(), w.gap_B.data(), poison.data());
     if (n >= kernels::kNullVectorSeedMinSize)
       kernel.null_vector_seed(n, seeded, stride, w.gap_B.data(), w.gap_z.data(), w.gap_defect.data(),
-                              w.gap_estimate.data());
+                              w.gap_estimate.data(), kFastPathMaxDefect);
     else  // a conic: the pivoted kernel (its gap unused here: the gap pass decides with its own)
       kernel.null_vector(n, seeded, stride, w.gap_B.data(), w.gap_z.data(), w.gap_defect.data(),
                          w.gap_estimate.data(), w.gap_second.data());

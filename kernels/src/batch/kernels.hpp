@@ -13,7 +13,7 @@ using SymmetricSvdKernel = void (*)(int n, std::size_t count, std::size_t stride
 using NullVectorKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                                   double* defect, double* estimate, double* second);
 using NullVectorSeedKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
-                                            double* defect, double* residual);
+                                      double* defect, double* residual, double settled_defect);
 using RationalNewtonKernel = void (*)(const RationalCurve& curve, const NewtonSettings& settings,
                                       std::size_t count, const double* u, const double* v, double* t,
                                       double* distance);
@@ -31,7 +31,7 @@ using BezoutMatrixKernel = void (*)(int n, std::size_t count, std::size_t stride
 using BezoutNullVectorSeedKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B0,
                                             const double* Bx, const double* By, const double* Bxy, const double* u,
                                             const double* v, double* z, double* defect, double* residual,
-                                            double* poison);
+                                            double* poison, double settled_defect);
 using SpaceCheckKernel = void (*)(const SpaceCurve& curve, std::size_t count, const double* t, const double* x,
                                   const double* y, const double* z, double* distance);
 

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -45,11 +46,42 @@ namespace hn = wide;
 // off it has a slightly regular B whose z is as good a seed as a null vector.
 // kGap false (the seeds): z from L D L^T without pivoting (Ldlt), measure 1 alone, and no
 // deflated iterations, no sigma_{n-1} estimate, no second vector.
+// ||B x|| for every lane of a group, B's entries from `entry(r, c)` (r >= c) and x as x[r L + lane]:
+// B x from the lower triangle in one pass over it, entry (r, c), c < r, adding to row r (in a
+// register) and to row c (in y).
+template <int N, class D, class Entry>
+HWY_INLINE wide::Vec<D> residual_norm(D d, const Entry& entry, const double* HWY_RESTRICT x) {
+  constexpr std::size_t L = hn::MaxLanes(D());
+  HWY_ALIGN double y[N * L];
+  for (int r = 0; r < N; ++r) {
+    const auto xr = hn::Load(d, x + r * L);
+    auto row = hn::Mul(entry(r, r), xr);
+    for (int c = 0; c < r; ++c) {
+      const auto e = entry(r, c);
+      row = hn::MulAdd(e, hn::Load(d, x + c * L), row);
+      hn::Store(hn::MulAdd(e, xr, hn::Load(d, y + c * L)), d, y + c * L);
+    }
+    hn::Store(row, d, y + r * L);
+  }
+  auto residual2 = hn::Zero(d);
+  for (int r = 0; r < N; ++r) residual2 = hn::MulAdd(hn::Load(d, y + r * L), hn::Load(d, y + r * L), residual2);
+  return hn::Sqrt(residual2);
+}
+
+// The seeds (kGap false) compute the residual only for the lanes whose defect is at most
+// `settled_defect`, and write NaN for the others: a seed that has not settled is not used, and
+// its residual, which forms B a second time, is a fifth of the seed's work at n = 15. A group
+// whose lanes all settled computes it at once, one with none skips it, and one with both either
+// computes it for all (deferred_scale null) or leaves it to the caller for the settled lanes,
+// writing their 1 / ||B||_F to deferred_scale[l] (NaN for the other lanes, l < lanes) and
+// returning true: a group of mostly unsettled lanes (points off the curve) then does not run for
+// the few settled ones.
 template <int N, bool kGap, class Source, class D>
-HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, std::size_t lanes,
+HWY_NOINLINE bool null_vector_group(D d, std::size_t stride, std::size_t first, std::size_t lanes,
                                     const Source& source, double* HWY_RESTRICT z,
                                     double* HWY_RESTRICT defect, double* HWY_RESTRICT estimate,
-                                    double* HWY_RESTRICT second) {
+                                    double* HWY_RESTRICT second, double settled_defect = 1.0,
+                                    double* HWY_RESTRICT deferred_scale = nullptr) {
   static_assert(N >= 2, "n = 1 has no sigma_{n-1}, and no seed needs it");
   constexpr std::size_t L = hn::MaxLanes(D());
   const auto one = hn::Set(d, 1.0);
@@ -116,23 +148,6 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
     if (iteration + kMeasured >= kIterations) unsettled = hn::Max(unsettled, chord<N>(d, previous, x));
   }
 
-  // ||B z|| / ||B||_F with the original entries (scaled once at the end: the same to rounding as
-  // with the normalised entries, at n^2 fewer multiplications), B z from the lower triangle in
-  // one pass over it: entry (r, c), c < r, adds to row r (in a register) and to row c (in y).
-  HWY_ALIGN double y[N * L];
-  for (int r = 0; r < N; ++r) {
-    const auto xr = hn::Load(d, x + r * L);
-    auto row = hn::Mul(entry(r, r), xr);
-    for (int c = 0; c < r; ++c) {
-      const auto e = entry(r, c);
-      row = hn::MulAdd(e, hn::Load(d, x + c * L), row);
-      hn::Store(hn::MulAdd(e, xr, hn::Load(d, y + c * L)), d, y + c * L);
-    }
-    hn::Store(row, d, y + r * L);
-  }
-  auto residual2 = hn::Zero(d);
-  for (int r = 0; r < N; ++r) residual2 = hn::MulAdd(hn::Load(d, y + r * L), hn::Load(d, y + r * L), residual2);
-  const auto residual = hn::Mul(hn::Sqrt(residual2), scale);
   auto result = unsettled;
   auto next = hn::Zero(d);  // 1 / growth (kGap)
 
@@ -147,7 +162,32 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
   result = hn::IfThenElse(zero_matrix, one, result);
   result = hn::IfThenElse(hn::Le(result, one), result, one);
 
-  const auto residual_out = hn::IfThenElse(zero_matrix, hn::Zero(d), residual);
+  // ||B z|| / ||B||_F with the original entries (scaled once at the end: the same to rounding as
+  // with the normalised entries, at n^2 fewer multiplications). The seeds: where settled only
+  // (above).
+  const auto nan = hn::Set(d, std::numeric_limits<double>::quiet_NaN());
+  auto residual_out = nan;
+  bool deferred = false;
+  if constexpr (kGap) {
+    residual_out = hn::IfThenElse(zero_matrix, hn::Zero(d), hn::Mul(residual_norm<N>(d, entry, x), scale));
+  } else {
+    const auto settled = hn::Le(result, hn::Set(d, settled_defect));
+    bool in_place = !hn::AllFalse(d, settled);
+    if (in_place && deferred_scale != nullptr) {  // some lanes settled: all of them (padding aside)?
+      const auto not_settled = lanes == L ? hn::Not(settled) : hn::AndNot(settled, hn::FirstN(d, lanes));
+      if (!hn::AllFalse(d, not_settled)) {
+        HWY_ALIGN double scale_lanes[L];
+        hn::Store(hn::IfThenElse(settled, scale, nan), d, scale_lanes);
+        for (std::size_t l = 0; l < lanes; ++l) deferred_scale[l] = scale_lanes[l];
+        in_place = false;
+        deferred = true;
+      }
+    }
+    if (in_place) {
+      const auto residual = hn::IfThenElse(zero_matrix, hn::Zero(d), hn::Mul(residual_norm<N>(d, entry, x), scale));
+      residual_out = hn::IfThenElse(settled, residual, nan);
+    }
+  }
   // A zero matrix has every direction null: no gap.
   next = hn::IfThenElse(zero_matrix, hn::Zero(d), next);
   if (lanes == L) {  // a whole group: vector stores (lane by lane is measurably slower at small n)
@@ -161,7 +201,7 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
         if (second) hn::StoreU(hn::Load(d, w_lanes + r * L), d, second + r * stride + first);
       hn::StoreU(hn::Load(d, x + r * L), d, z + r * stride + first);
     }
-    return;
+    return deferred;
   }
   HWY_ALIGN double defect_lanes[L], residual_lanes[L], next_lanes[L];
   hn::Store(result, d, defect_lanes);
@@ -178,6 +218,7 @@ HWY_NOINLINE void null_vector_group(D d, std::size_t stride, std::size_t first, 
         for (int r = 0; r < N; ++r) second[static_cast<std::size_t>(r) * stride + first + l] = w_lanes[r * L + l];
     for (int r = 0; r < N; ++r) z[static_cast<std::size_t>(r) * stride + first + l] = x[r * L + l];
   }
+  return deferred;
 }
 
 // Lanes per group: kWideVectors<N> SIMD vectors side by side, whose dependency chains overlap; each
@@ -195,13 +236,14 @@ inline constexpr int kWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == H
 // themselves, matrix_source-inl.hpp.)
 template <int N, bool kGap, class Source>
 void null_vector_fixed(std::size_t count, std::size_t stride, const Source& B, double* z, double* defect,
-                       double* estimate, double* second) {
+                       double* estimate, double* second, double settled_defect = 1.0) {
   using Wide = wide::Tag<kWideVectors<N>>;
   constexpr std::size_t LW = wide::MaxLanes(Wide());
   constexpr bool kPastTheRows = !GroupMatrix<Source, Wide>::kFormed;
   std::size_t first = 0;
   for (; first < count && (!kPastTheRows || first + LW <= stride); first += LW)
-    null_vector_group<N, kGap>(Wide(), stride, first, std::min(LW, count - first), B, z, defect, estimate, second);
+    null_vector_group<N, kGap>(Wide(), stride, first, std::min(LW, count - first), B, z, defect, estimate, second,
+                               settled_defect);
   if constexpr (kPastTheRows) {
     if (first >= count) return;
     const std::size_t lanes = count - first;
@@ -210,7 +252,7 @@ void null_vector_fixed(std::size_t count, std::size_t stride, const Source& B, d
     for (std::size_t i = 0; i < N * N; ++i) std::copy_n(B.B + i * stride + first, lanes, padded.data() + i * LW);
     null_vector_group<N, kGap>(Wide(), LW, 0, lanes, StoredMatrices{padded.data()}, z_lanes.data(),
                                defect_lanes.data(), estimate ? estimate_lanes.data() : nullptr,
-                               second ? second_lanes.data() : nullptr);
+                               second ? second_lanes.data() : nullptr, settled_defect);
     for (std::size_t l = 0; l < lanes; ++l) {
       defect[first + l] = defect_lanes[l];
       if (estimate) {

@@ -133,6 +133,9 @@ struct Implementation {
   // vector). Writes z (unit 2-norm), residual[l] = ||B z|| / ||B||_F and defect[l] = the chord
   // between the two iterates (null_vector's measure 1, over one step). Reads only B's lower
   // triangle. n in [kNullVectorSeedMinSize, kNullVectorSeedMaxSize].
+  // The residual is computed only where defect[l] <= settled_defect, and is NaN elsewhere: a seed
+  // that has not settled is of no use, and the residual forms B once more (1 or more: every lane,
+  // the defect being at most 1). Each lane's numbers are the same whatever its batch.
   // Unpivoted, z may be poor after a small pivot, and a settled z is not proof of a simple null
   // vector: callers check what they make of it by other means (the engine's isolation
   // certificate) and send the lanes they cannot settle to null_vector or symmetric_svd
@@ -141,7 +144,7 @@ struct Implementation {
   // without a factorization: adj(B) = det(B) B^-1), and the defect is the sine of the angle
   // between the two steps (batch/adjugate_null_vector-inl.hpp).
   void (*null_vector_seed)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
-                           double* defect, double* residual);
+                           double* defect, double* residual, double settled_defect);
 
   // Newton's method for the nearest point of `curve` to (u[l], v[l]) on the segment [0, 1], one
   // point per lane from the start t[l]: the engine's safeguarded refinement (engine/src/refine.hpp,
@@ -219,10 +222,13 @@ struct Implementation {
   // null_vector_seed (for the n both take), and the same poison (NaN for a lane whose B overflowed; its other outputs
   // are then meaningless). At high degree a batch's B does not fit in L1, and reading it back
   // would be most of the seed's time. z, defect and residual are laid out as null_vector_seed's
-  // (stride). n in [kBezoutNullVectorSeedMinSize, kBezoutNullVectorSeedMaxSize].
+  // (stride), the residual also only where defect[l] <= settled_defect. The settled lanes of a
+  // SIMD group of mostly unsettled ones have their residual computed after the others, compacted,
+  // so that a batch of points off the curve pays for the few that settled only.
+  // n in [kBezoutNullVectorSeedMinSize, kBezoutNullVectorSeedMaxSize].
   void (*bezout_null_vector_seed)(int n, std::size_t count, std::size_t stride, const double* B0, const double* Bx,
                                   const double* By, const double* Bxy, const double* u, const double* v, double* z,
-                                  double* defect, double* residual, double* poison);
+                                  double* defect, double* residual, double* poison, double settled_defect);
 
   // The check in space of a space curve's answers (engine/src/space/space_curve.cpp, space_refine's
   // first test), one point per lane: P(t) and P'(t) at the lane's t[l] in [0, 1] by Horner's rule,
