@@ -135,6 +135,32 @@ std::pair<Piece, Piece> halves(const Piece& piece) {
   return out;
 }
 
+// A piece's curve alone: X, Wx, Y, Wy and their bounds (Piece's first 8 (n + 1) coefficients),
+// for the boxes of its parts; on the stack, halved as halves() halves it.
+constexpr std::size_t kCurveStride = kMaxBernsteinDegree + 1;
+using CurveOnly = std::array<double, 8 * kCurveStride>;
+
+void curve_halves(const CurveOnly& curve, int n, CurveOnly& left, CurveOnly& right) {
+  for (std::size_t which = 0; which < 8; ++which)
+    split(curve.data() + which * kCurveStride, n, 0.5, left.data() + which * kCurveStride,
+          right.data() + which * kCurveStride);
+}
+
+std::array<double, 4> curve_box(const CurveOnly& curve, int n) {
+  auto span = [&](std::size_t which) { return Span(curve.data() + which * kCurveStride, static_cast<std::size_t>(n + 1)); };
+  return control_box(span(0), span(1), span(2), span(3), {span(4), span(5), span(6), span(7)});
+}
+
+// Whether (u0, v0) is farther than the radius from every part of the piece (false where the
+// piece has no parts).
+bool parts_clear(const OffCurveData& data, int piece, double u0, double v0, double radius2) {
+  const std::uint32_t begin = data.extension_part_begin[piece], end = data.extension_part_begin[piece + 1];
+  if (begin == end) return false;
+  for (std::uint32_t k = begin; k < end; ++k)
+    if (!(box_distance2(data.extension_parts.data() + 4 * static_cast<std::size_t>(k), u0, v0) > radius2)) return false;
+  return true;
+}
+
 // The pieces by their far radius, nearest the origin first (NaN, no radius known, before all):
 // a point then tests only the pieces up to the first whose radius it lies within, where it tested
 // the far radius of every piece (30-40 of them, nearly all cleared by it). The clearance is every
@@ -151,18 +177,25 @@ void order_by_far_radius(OffCurveData& data) {
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
   const std::size_t h_size = 4 * static_cast<std::size_t>(m + 1);
   std::vector<double> h(data.extension_h.size()), scale(data.extension_scale.size()),
-      boxes(data.extension_boxes.size()), far2(pieces);
+      boxes(data.extension_boxes.size()), far2(pieces), parts;
+  std::vector<std::uint32_t> part_begin{0};
+  parts.reserve(data.extension_parts.size());
   for (std::size_t k = 0; k < pieces; ++k) {
     const std::size_t i = order[k];
     std::copy_n(data.extension_h.begin() + i * h_size, h_size, h.begin() + k * h_size);
     std::copy_n(data.extension_scale.begin() + 4 * i, 4, scale.begin() + 4 * k);
     std::copy_n(data.extension_boxes.begin() + 4 * i, 4, boxes.begin() + 4 * k);
     far2[k] = data.extension_far2[i];
+    parts.insert(parts.end(), data.extension_parts.begin() + 4 * data.extension_part_begin[i],
+                 data.extension_parts.begin() + 4 * data.extension_part_begin[i + 1]);
+    part_begin.push_back(static_cast<std::uint32_t>(parts.size() / 4));
   }
   data.extension_h = std::move(h);
   data.extension_scale = std::move(scale);
   data.extension_boxes = std::move(boxes);
   data.extension_far2 = std::move(far2);
+  data.extension_parts = std::move(parts);
+  data.extension_part_begin = std::move(part_begin);
 }
 
 // The grid of ExtensionGrid (plan_data.hpp). A piece's box and its far radius R each bound
@@ -205,19 +238,34 @@ void make_extension_grid(const PlanData& plan, const OffCurveData& data, Extensi
   std::vector<double> clear2(static_cast<std::size_t>(G) * G, inf);
   const std::size_t pieces = data.extension_far2.size();
   std::array<double, G> dx2, dy2;
-  for (std::size_t piece = 0; piece < pieces; ++piece) {
-    const double* box = data.extension_boxes.data() + 4 * piece;
-    const double far2 = data.extension_far2[piece], far = far2 > 0 ? std::sqrt(far2) : 0.0;  // NaN: none
+  constexpr int kMostParts = 1 << kExtensionPartHalvings;
+  std::array<std::array<double, G>, kMostParts> part_dx2, part_dy2;
+  // The squares of the distances from each column's (or row's) cells to a box, 0 for a NaN box.
+  const auto distances2 = [&](const double* box, std::array<double, G>& x2, std::array<double, G>& y2) {
     const bool boxed = box[0] == box[0];  // NaN: the box does not hold the piece
     for (int i = 0; i < G; ++i) {
       const double dx = boxed ? std::max({box[0] - u1[i], u0[i] - box[1], 0.0}) : 0.0;
       const double dy = boxed ? std::max({box[2] - v1[i], v0[i] - box[3], 0.0}) : 0.0;
-      dx2[i] = dx * dx, dy2[i] = dy * dy;
+      x2[i] = dx * dx, y2[i] = dy * dy;
     }
+  };
+  for (std::size_t piece = 0; piece < pieces; ++piece) {
+    const double far2 = data.extension_far2[piece], far = far2 > 0 ? std::sqrt(far2) : 0.0;  // NaN: none
+    distances2(data.extension_boxes.data() + 4 * piece, dx2, dy2);
+    const std::uint32_t first_part = data.extension_part_begin[piece];
+    const int parts = static_cast<int>(data.extension_part_begin[piece + 1] - first_part);
+    for (int k = 0; k < parts; ++k)
+      distances2(data.extension_parts.data() + 4 * static_cast<std::size_t>(first_part + k), part_dx2[k], part_dy2[k]);
     for (int j = 0; j < G; ++j)
       for (int i = 0; i < G; ++i) {
         const double by_radius = far - corner[j * G + i], by_radius2 = by_radius > 0 ? by_radius * by_radius : 0.0;
-        const double by_box2 = dx2[i] + dy2[j], bound2 = by_box2 > by_radius2 ? by_box2 : by_radius2;
+        double by_box2 = dx2[i] + dy2[j];
+        if (parts > 0) {  // the nearest part, where it is farther than the box
+          double by_parts2 = std::numeric_limits<double>::infinity();
+          for (int k = 0; k < parts; ++k) by_parts2 = std::min(by_parts2, part_dx2[k][i] + part_dy2[k][j]);
+          by_box2 = std::max(by_box2, by_parts2);
+        }
+        const double bound2 = by_box2 > by_radius2 ? by_box2 : by_radius2;
         double& value = clear2[static_cast<std::size_t>(j) * G + i];
         value = bound2 < value ? bound2 : value;
       }
@@ -236,9 +284,21 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
   data.extension_scale.clear();
   data.extension_boxes.clear();
   data.extension_far2.clear();
+  data.extension_parts.clear();
+  data.extension_part_begin.assign(1, 0);
   if (plan.degree < 2) return;
   const int m = (plan.common_denominator ? 2 : 4) * plan.degree;
   data.extension_degree = m;
+  // Where points near the curve are: the box of the segment's samples, widened by
+  // kExtensionPartRatio of the curve (the parts are for the pieces whose box reaches it).
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::array<double, 4> near_box{inf, -inf, inf, -inf};
+  for (std::size_t k = 0; k + 1 < plan.nearest_samples.size(); k += 2)
+    for (int axis = 0; axis < 2; ++axis) {
+      near_box[2 * axis] = std::min(near_box[2 * axis], plan.nearest_samples[k + axis]);
+      near_box[2 * axis + 1] = std::max(near_box[2 * axis + 1], plan.nearest_samples[k + axis]);
+    }
+  for (int side = 0; side < 4; ++side) near_box[side] += (side % 2 ? 1 : -1) * kExtensionPartRatio * plan.normalized_diagonal;
   for (int half = 0; half < kHalves; ++half) {
     const std::array<BernsteinPoly, 4> curve = curve_on_half(plan, half, false),
                                        curve_bound = curve_on_half(plan, half, true);
@@ -284,6 +344,42 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
       }
       data.extension_boxes.insert(data.extension_boxes.end(), box.begin(), box.end());
       data.extension_far2.push_back(far2);
+      // Its parts (header): where its box reaches the segment's surroundings and is wider than
+      // kExtensionPartRatio of the curve, halved, the curve alone, until each is narrower or
+      // kExtensionPartHalvings deep; none where a part's box does not hold it.
+      const std::size_t parts_before = data.extension_parts.size();
+      const auto narrow = [&](const std::array<double, 4>& b) {
+        return std::hypot(b[1] - b[0], b[3] - b[2]) <= kExtensionPartRatio * size;  // NaN: not narrow
+      };
+      const bool reaches = box[0] <= near_box[1] && box[1] >= near_box[0] && box[2] <= near_box[3] && box[3] >= near_box[2];
+      if (reaches && far2 < size * size && !narrow(box)) {  // reaches: false for a NaN box
+        bool held = true;
+        const auto add_part = [&](auto&& self, const CurveOnly& curve, int halvings) -> void {
+          if (!held) return;
+          const std::array<double, 4> part = curve_box(curve, plan.degree);
+          if (!(part[0] == part[0])) {
+            held = false;
+            return;
+          }
+          if (halvings == kExtensionPartHalvings || narrow(part)) {
+            data.extension_parts.insert(data.extension_parts.end(), part.begin(), part.end());
+            return;
+          }
+          CurveOnly left, right;
+          curve_halves(curve, plan.degree, left, right);
+          self(self, left, halvings + 1);
+          self(self, right, halvings + 1);
+        };
+        CurveOnly whole_curve;
+        for (int which = 0; which < 8; ++which)
+          std::copy(piece.curve(which).begin(), piece.curve(which).end(), whole_curve.data() + which * kCurveStride);
+        CurveOnly left, right;
+        curve_halves(whole_curve, plan.degree, left, right);
+        add_part(add_part, left, 1);
+        add_part(add_part, right, 1);
+        if (!held) data.extension_parts.resize(parts_before);
+      }
+      data.extension_part_begin.push_back(static_cast<std::uint32_t>(data.extension_parts.size() / 4));
     };
     add(add, whole, 0);
   }
@@ -317,6 +413,7 @@ bool extension_clear(const PlanData& plan, double u0, double v0, double radius, 
     if (beyond2 < data.extension_far2[piece]) break;  // and every piece after it (order_by_far_radius)
     const double* box = data.extension_boxes.data() + piece * 4;
     if (box[0] == box[0] && box_distance2(box, u0, v0) > radius2) continue;  // not NaN: the box holds the piece
+    if (parts_clear(data, piece, u0, v0, radius2)) continue;
     const double* H = data.extension_h.data() + static_cast<std::size_t>(piece) * 4 * (m + 1);
     const double* scale = data.extension_scale.data() + piece * 4;
     const double slack = gamma * (scale[0] + std::abs(u0) * scale[1] + std::abs(v0) * scale[2] + c_bound * scale[3]);

@@ -26,12 +26,15 @@
 // combination, and all of them positive (beyond their rounding) prove the piece clear. Where a
 // piece's weights are of one sign its control points' box bounds it too, which clears most
 // pieces with four comparisons (make_plan halves the pieces around a pole until it does, for all
-// but a narrow one). A piece far out (towards a pole, or towards infinity on a polynomial curve)
+// but a narrow one), and a wide one near the curve keeps the boxes of its parts (the convex hull
+// of a part's control points lies in that of the piece's, so they bound it more closely, and a
+// point farther than the radius from all of them is clear of the piece). A piece far out (towards a pole, or towards infinity on a polynomial curve)
 // clears with one: make_plan finds a radius R about the origin it stays outside (H0 - R^2 Hw
 // has positive coefficients), and |P - P0| >= R - |P0|. A piece none of these clears is halved
 // (de Casteljau) a few times per point. Before any piece, a grid over the segment's surroundings
 // (made once a few hundred points of a plan have come this way) clears most points with one comparison: per
-// cell, the least over the pieces of what their box and far radius prove for the whole cell.
+// cell, the least over the pieces of what their box (or parts' boxes) and far radius prove for the
+// whole cell.
 #include <cstddef>
 
 #include "plan_data.hpp"
@@ -45,6 +48,13 @@ namespace bezinv::detail {
 inline constexpr int kExtensionPieces = 8;
 inline constexpr int kExtensionMaxPlanHalvings = 5;
 inline constexpr double kExtensionBoxRatio = 0.25;
+// A piece near the curve whose box is wider than kExtensionPartRatio of the curve's diagonal is
+// also halved, its curve alone (no h, so cheaply), at most kExtensionPartHalvings times, into
+// parts whose boxes a point must be within the radius of for the piece to need its h test: a
+// noisy point near the curve is often inside a wide piece's box but outside every part's. The
+// grid takes the parts' boxes too, so it clears more cells.
+inline constexpr double kExtensionPartRatio = 0.05;
+inline constexpr int kExtensionPartHalvings = 2;
 // How many times a piece that is not yet clear may be halved for one point.
 inline constexpr int kExtensionMaxHalvings = 8;
 // The grid that clears most points before any piece is looked at (a point otherwise scans the
@@ -56,8 +66,8 @@ inline constexpr int kExtensionGrid = 32;
 inline constexpr double kExtensionGridMargin = 0.25;
 inline constexpr std::size_t kExtensionGridAfter = 512;
 
-// Fills plan.extension_degree, extension_h, extension_scale, extension_boxes and extension_far2
-// (degree >= 2).
+// Fills plan.extension_degree, extension_h, extension_scale, extension_boxes, extension_far2,
+// extension_parts and extension_part_begin (degree >= 2).
 void extension_pieces(const PlanData& plan, OffCurveData& data);
 
 // Whether no point of the curve with t outside [0, 1] (nor at t = infinity) is within `radius` of

@@ -16,6 +16,7 @@
 #include <mutex>
 #include <span>
 #include <string>
+#include <cstdint>
 #include <vector>
 
 #include "bezinv/curve.hpp"
@@ -82,6 +83,12 @@ struct OffCurveData {
   // origin it stays outside (0: none). Empty (degree 0) below degree 2.
   int extension_degree = 0;
   std::vector<double> extension_h, extension_scale, extension_boxes, extension_far2;
+  // Per piece, the boxes of its parts (extension_parts[4 k .. 4 k + 3] for k from
+  // extension_part_begin[piece] to extension_part_begin[piece + 1]; none for most pieces): a wide
+  // piece near the curve halved, its curve alone, until each part is narrow
+  // (extension.hpp, kExtensionPartRatio).
+  std::vector<double> extension_parts;
+  std::vector<std::uint32_t> extension_part_begin;
 };
 
 // What clears most points of the extension at once (engine/src/extension.hpp, extension_grid):

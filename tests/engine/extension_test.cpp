@@ -222,6 +222,50 @@ TEST(Extension, AHyperbolaThroughItsPoles) {
   EXPECT_GT(cleared, tried * 9 / 10);
 }
 
+// Every point of the extension lies in the box of some piece, and, where that piece has parts, in
+// the box of one of them (to a part in 1e12 of the diagonal): the parts cover their piece, stay
+// with it when the pieces are put in order, and a point outside all of a piece's parts is clear of
+// it. Every kind, degrees 2-20; the extension evaluated independently (extension_point). Some
+// pieces must have parts, or the test would prove nothing.
+TEST(Extension, EveryPointOfTheExtensionIsInAPartOfItsPiece) {
+  std::mt19937_64 rng(47);
+  const std::vector<Real> ts = extension_parameters();
+  std::size_t with_parts = 0, points = 0;
+  for (const CurveKind kind : kAllKinds)
+    for (int n = 2; n <= 20; n += 3) {
+      SCOPED_TRACE(std::string(to_string(kind)) + " degree " + std::to_string(n));
+      const detail::PlanData plan = detail::plan_data(make_plan(datasets::random_curve(kind, n, rng)));
+      const detail::OffCurveData& data = detail::off_curve_data(plan);
+      const int pieces = static_cast<int>(data.extension_far2.size());
+      ASSERT_EQ(data.extension_part_begin.size(), static_cast<std::size_t>(pieces) + 1);
+      for (int piece = 0; piece < pieces; ++piece)
+        with_parts += data.extension_part_begin[piece + 1] > data.extension_part_begin[piece];
+      const double slack = 1e-12 * plan.normalized_diagonal;
+      const auto inside = [&](const double* box, const std::array<Real, 2>& q) {
+        return !(box[0] == box[0]) || (q[0] >= box[0] - slack && q[0] <= box[1] + slack && q[1] >= box[2] - slack &&
+                                       q[1] <= box[3] + slack);
+      };
+      for (std::size_t k = 0; k < ts.size(); k += 7) {
+        const std::array<Real, 2> q = extension_point(plan, ts[k]);
+        if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || std::abs(q[0]) > 1e6 || std::abs(q[1]) > 1e6) continue;
+        ++points;
+        bool covered = false;
+        for (int piece = 0; piece < pieces && !covered; ++piece) {
+          if (!inside(data.extension_boxes.data() + 4 * piece, q)) continue;
+          const std::uint32_t begin = data.extension_part_begin[piece], end = data.extension_part_begin[piece + 1];
+          covered = begin == end;
+          for (std::uint32_t part = begin; part < end && !covered; ++part)
+            covered = inside(data.extension_parts.data() + 4 * static_cast<std::size_t>(part), q);
+        }
+        EXPECT_TRUE(covered) << "t = " << static_cast<double>(ts[k]) << ": (" << static_cast<double>(q[0]) << ", "
+                             << static_cast<double>(q[1]) << ")";
+      }
+    }
+  RecordProperty("pieces_with_parts", static_cast<int>(with_parts));
+  EXPECT_GE(with_parts, 20u);
+  EXPECT_GE(points, 1000u);
+}
+
 // A polynomial curve's extension runs off to infinity as t grows: its pieces there are far from
 // every point near the curve, and the far radius must say so, or every such point pays the h test
 // on each of them (the Bezier kind's t >= 1 half has W = (1 - s)^n, about 0 beside its rounding
