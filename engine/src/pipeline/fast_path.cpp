@@ -53,8 +53,7 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
 
 // Lane-batched refinement of every lane from t_algebraic (t_refined, distance), in two groups by
 // B's sigma_min estimate (||B z|| / ||B||): the lanes whose seed put them on the curve (at rounding
-// level, or NaN where the formula gave t: no B, or where the seed did not settle: no t either) by
-// rational_newton, refine.cpp's Newton bit for
+// level, or NaN where the formula gave t: no B) by rational_newton, refine.cpp's Newton bit for
 // bit; the others, off the curve (beyond ~1e-12 of it), by nearest_newton, the off-curve path's
 // cheaper kernel, whose t the isolation certificate or the off-curve path's proofs then take.
 // Except where that ends at an end of the segment: whether a point by an end is within the
@@ -63,21 +62,32 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
 // Grouping also keeps the Newton kernels' SIMD groups of one kind: a group runs until its slowest
 // lane settles, and a point off the curve takes several steps where a point on it takes one. A
 // lane's group depends on its own estimate alone, so its answer does not depend on its batch.
+// A lane without a start in [0, 1] (a seed that did not settle: t and estimate NaN; a parameter
+// off the segment) goes to neither: both kernels would give it back as it is, t kept and distance
+// NaN, but only after taking a place in a group. In a batch half on the curve and half off, the
+// unsettled lanes among the on-curve ones had rational_newton run twice as many groups for them.
 void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
                     BatchWorkspace& w) {
   constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
   const kernels::RationalCurve curve = kernel_curve(plan);
   std::array<std::uint8_t, kBatchLanes> lane_of;
   std::size_t near = 0;
-  for (std::size_t l = 0; l < count; ++l)
-    if (!(w.estimate[l] > kOnCurveEstimate)) lane_of[near++] = static_cast<std::uint8_t>(l);
+  for (std::size_t l = 0; l < count; ++l) {  // without a branch: on the curve, every lane
+    const double t = w.t_refined[l];
+    lane_of[near] = static_cast<std::uint8_t>(l);
+    near += (t >= 0.0) & (t <= 1.0) & !(w.estimate[l] > kOnCurveEstimate);
+  }
   if (near == count) {
     kernel.rational_newton(curve, kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(), w.distance.data());
     return;
   }
   std::size_t far = near;
-  for (std::size_t l = 0; l < count; ++l)
-    if (w.estimate[l] > kOnCurveEstimate) lane_of[far++] = static_cast<std::uint8_t>(l);
+  for (std::size_t l = 0; l < count; ++l) {
+    const double t = w.t_refined[l];
+    if (!((t >= 0.0) & (t <= 1.0))) w.distance[l] = PointResult::nan;
+    else if (w.estimate[l] > kOnCurveEstimate) lane_of[far++] = static_cast<std::uint8_t>(l);
+  }
+  count = far;
   std::array<double, kBatchLanes> u, v, t, distance;
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t l = lane_of[k];
