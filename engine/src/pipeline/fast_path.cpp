@@ -61,33 +61,24 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
 // refined again by rational_newton, as the scalar code (and the SVD path) would.
 // Grouping also keeps the Newton kernels' SIMD groups of one kind: a group runs until its slowest
 // lane settles, and a point off the curve takes several steps where a point on it takes one. A
-// lane's group depends on its own estimate alone, so its answer does not depend on its batch.
-// A lane without a start in [0, 1] (a seed that did not settle: t and estimate NaN; a parameter
-// off the segment) goes to neither: both kernels would give it back as it is, t kept and distance
-// NaN, but only after taking a place in a group. In a batch half on the curve and half off, the
-// unsettled lanes among the on-curve ones had rational_newton run twice as many groups for them.
+// lane's group depends on its own estimate alone, so its answer does not depend on its batch. A
+// seed that did not settle has no t and an infinite estimate (the seeds leave its residual
+// uncomputed): such lanes go with the off-curve ones, out of the on-curve lanes' groups.
 void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
                     BatchWorkspace& w) {
   constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
   const kernels::RationalCurve curve = kernel_curve(plan);
   std::array<std::uint8_t, kBatchLanes> lane_of;
   std::size_t near = 0;
-  for (std::size_t l = 0; l < count; ++l) {  // without a branch: on the curve, every lane
-    const double t = w.t_refined[l];
-    lane_of[near] = static_cast<std::uint8_t>(l);
-    near += (t >= 0.0) & (t <= 1.0) & !(w.estimate[l] > kOnCurveEstimate);
-  }
+  for (std::size_t l = 0; l < count; ++l)
+    if (!(w.estimate[l] > kOnCurveEstimate)) lane_of[near++] = static_cast<std::uint8_t>(l);
   if (near == count) {
     kernel.rational_newton(curve, kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(), w.distance.data());
     return;
   }
   std::size_t far = near;
-  for (std::size_t l = 0; l < count; ++l) {
-    const double t = w.t_refined[l];
-    if (!((t >= 0.0) & (t <= 1.0))) w.distance[l] = PointResult::nan;
-    else if (w.estimate[l] > kOnCurveEstimate) lane_of[far++] = static_cast<std::uint8_t>(l);
-  }
-  count = far;
+  for (std::size_t l = 0; l < count; ++l)
+    if (w.estimate[l] > kOnCurveEstimate) lane_of[far++] = static_cast<std::uint8_t>(l);
   std::array<double, kBatchLanes> u, v, t, distance;
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t l = lane_of[k];

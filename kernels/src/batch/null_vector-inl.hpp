@@ -69,7 +69,7 @@ HWY_INLINE wide::Vec<D> residual_norm(D d, const Entry& entry, const double* HWY
 }
 
 // The seeds (kGap false) compute the residual only for the lanes whose defect is at most
-// `settled_defect`, and write NaN for the others: a seed that has not settled is not used, and
+// `settled_defect`, and write +inf for the others: a seed that has not settled is not used, and
 // its residual, which forms B a second time, is a fifth of the seed's work at n = 15. A group
 // whose lanes all settled computes it at once, one with none skips it, and one with both either
 // computes it for all (deferred_scale null) or leaves it to the caller for the settled lanes,
@@ -166,7 +166,7 @@ HWY_NOINLINE bool null_vector_group(D d, std::size_t stride, std::size_t first, 
   // with the normalised entries, at n^2 fewer multiplications). The seeds: where settled only
   // (above).
   const auto nan = hn::Set(d, std::numeric_limits<double>::quiet_NaN());
-  auto residual_out = nan;
+  auto residual_out = hn::Set(d, std::numeric_limits<double>::infinity());
   bool deferred = false;
   if constexpr (kGap) {
     residual_out = hn::IfThenElse(zero_matrix, hn::Zero(d), hn::Mul(residual_norm<N>(d, entry, x), scale));
@@ -185,7 +185,7 @@ HWY_NOINLINE bool null_vector_group(D d, std::size_t stride, std::size_t first, 
     }
     if (in_place) {
       const auto residual = hn::IfThenElse(zero_matrix, hn::Zero(d), hn::Mul(residual_norm<N>(d, entry, x), scale));
-      residual_out = hn::IfThenElse(settled, residual, nan);
+      residual_out = hn::IfThenElse(settled, residual, residual_out);
     }
   }
   // A zero matrix has every direction null: no gap.

@@ -28,14 +28,14 @@ HWY_BEFORE_NAMESPACE();
 namespace bezinv::kernels::HWY_NAMESPACE {
 
 // The seed of every lane's matrix stored in the batch: the adjugate at n = 3, L D L^T without
-// pivoting above; the residual only where the defect is at most settled_defect (NaN elsewhere).
+// pivoting above; the residual only where the defect is at most settled_defect (+inf elsewhere).
 template <int N>
 void seed_stored(std::size_t count, std::size_t stride, const StoredMatrices& source, double* z, double* defect,
                  double* residual, double settled_defect) {
   if constexpr (N == 3) {
     adjugate::seed<kWideVectors<3>>(count, stride, source, z, defect, residual);
     for (std::size_t l = 0; l < count; ++l)
-      if (!(defect[l] <= settled_defect)) residual[l] = std::numeric_limits<double>::quiet_NaN();
+      if (!(defect[l] <= settled_defect)) residual[l] = std::numeric_limits<double>::infinity();
   } else {
     null_vector_fixed<N, false>(count, stride, source, z, defect, residual, nullptr, settled_defect);
   }

@@ -133,7 +133,7 @@ struct Implementation {
   // vector). Writes z (unit 2-norm), residual[l] = ||B z|| / ||B||_F and defect[l] = the chord
   // between the two iterates (null_vector's measure 1, over one step). Reads only B's lower
   // triangle. n in [kNullVectorSeedMinSize, kNullVectorSeedMaxSize].
-  // The residual is computed only where defect[l] <= settled_defect, and is NaN elsewhere: a seed
+  // The residual is computed only where defect[l] <= settled_defect, and is +inf elsewhere: a seed
   // that has not settled is of no use, and the residual forms B once more (1 or more: every lane,
   // the defect being at most 1). Each lane's numbers are the same whatever its batch.
   // Unpivoted, z may be poor after a small pivot, and a settled z is not proof of a simple null
