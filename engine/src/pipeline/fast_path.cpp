@@ -63,7 +63,8 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
 // lane settles, and a point off the curve takes several steps where a point on it takes one. A
 // lane's group depends on its own estimate alone, so its answer does not depend on its batch. A
 // seed that did not settle has no t and an infinite estimate (the seeds leave its residual
-// uncomputed): such lanes go with the off-curve ones, out of the on-curve lanes' groups.
+// uncomputed): it is not in the on-curve lanes' groups, and, like every off-curve lane without a
+// start in [0, 1], it takes no place in nearest_newton's either (off the curve, most lanes).
 void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
                     BatchWorkspace& w) {
   constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
@@ -78,7 +79,11 @@ void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan,
   }
   std::size_t far = near;
   for (std::size_t l = 0; l < count; ++l)
-    if (w.estimate[l] > kOnCurveEstimate) lane_of[far++] = static_cast<std::uint8_t>(l);
+    if (w.estimate[l] > kOnCurveEstimate) {
+      if (w.t_refined[l] >= 0.0 && w.t_refined[l] <= 1.0) lane_of[far++] = static_cast<std::uint8_t>(l);
+      else w.distance[l] = PointResult::nan;  // as nearest_newton would give it back
+    }
+  count = far;
   std::array<double, kBatchLanes> u, v, t, distance;
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t l = lane_of[k];
