@@ -135,32 +135,49 @@ TEST(BezoutNullVectorSeed, AnOverflowingMatrixPoisonsItsLaneOnly) {
 
 // B(u, v) = B0 - u Bx with B0 = Q diag(s) Q^T and Bx = q q^T for q = Q's last column: the lanes
 // with u = s_n are singular with null vector q (up to the rounding of B0 and of u Bx), the others
-// regular with sigma_n = |s_n - u|. Every size the kernel takes, one denominator (Bxy null).
-TEST(BezoutNullVectorSeed, NullVectorsOfConstructedMatrices) {
-  std::mt19937_64 rng(44);
+// regular with sigma_n = |s_n - u|. Q from a Gaussian matrix, s uniform in +-[0.1, 1].
+struct ConstructedPencil {
+  std::vector<double> B0, Bx, By;  // n x n, row-major, symmetric to the last bit (By = 0)
+  Eigen::VectorXd null;            // q
+  double singular_u = 0;           // s_n
+};
+
+ConstructedPencil constructed_pencil(int n, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> spectrum(0.1, 1.0);
   std::normal_distribution<double> gaussian;
+  Eigen::MatrixXd a(n, n);
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) a(r, c) = gaussian(rng);
+  const Eigen::MatrixXd q = test_support::orthogonal_factor(a);
+  Eigen::VectorXd s(n);
+  for (int k = 0; k < n; ++k) s(k) = spectrum(rng) * (rng() % 2 ? 1.0 : -1.0);
+  const Eigen::MatrixXd b0 = q * s.asDiagonal() * q.transpose();
+  ConstructedPencil pencil;
+  pencil.null = q.col(n - 1);
+  pencil.singular_u = s(n - 1);
+  const Eigen::MatrixXd bx = pencil.null * pencil.null.transpose();
+  const std::size_t nn = static_cast<std::size_t>(n) * n;
+  pencil.B0.resize(nn), pencil.Bx.resize(nn), pencil.By.assign(nn, 0.0);
+  for (int r = 0; r < n; ++r)  // symmetric to the last bit, as Bezout matrices are
+    for (int c = 0; c <= r; ++c) {
+      pencil.B0[r * n + c] = pencil.B0[c * n + r] = b0(r, c);
+      pencil.Bx[r * n + c] = pencil.Bx[c * n + r] = bx(r, c);
+    }
+  return pencil;
+}
+
+// Every size the kernel takes, one denominator (Bxy null).
+TEST(BezoutNullVectorSeed, NullVectorsOfConstructedMatrices) {
+  std::mt19937_64 rng(44);
   double worst_cos = 0;
   for (int n = kBezoutNullVectorSeedMinSize; n <= kBezoutNullVectorSeedMaxSize; ++n) {
-    Eigen::MatrixXd a(n, n);
-    for (int r = 0; r < n; ++r)
-      for (int c = 0; c < n; ++c) a(r, c) = gaussian(rng);
-    const Eigen::MatrixXd q = test_support::orthogonal_factor(a);
-    Eigen::VectorXd s(n);
-    for (int k = 0; k < n; ++k) s(k) = spectrum(rng) * (rng() % 2 ? 1.0 : -1.0);
-    const Eigen::MatrixXd b0 = q * s.asDiagonal() * q.transpose();
-    const Eigen::VectorXd null = q.col(n - 1);
-    const Eigen::MatrixXd bx = null * null.transpose();
-    const std::size_t nn = static_cast<std::size_t>(n) * n;
-    std::vector<double> B0(nn), Bx(nn), By(nn, 0.0);
-    for (int r = 0; r < n; ++r)  // symmetric to the last bit, as Bezout matrices are
-      for (int c = 0; c <= r; ++c) {
-        B0[r * n + c] = B0[c * n + r] = b0(r, c);
-        Bx[r * n + c] = Bx[c * n + r] = bx(r, c);
-      }
+    const ConstructedPencil pencil = constructed_pencil(n, rng);
+    const std::vector<double>&B0 = pencil.B0, &Bx = pencil.Bx, &By = pencil.By;
+    const Eigen::VectorXd& null = pencil.null;
     for (const std::size_t count : {std::size_t{5}, std::size_t{64}}) {
       std::vector<double> u(count), v(count, 0.0);
-      for (std::size_t l = 0; l < count; ++l) u[l] = l % 2 ? s(n - 1) : s(n - 1) - 0.5;  // singular, regular
+      for (std::size_t l = 0; l < count; ++l)  // singular, regular
+        u[l] = l % 2 ? pencil.singular_u : pencil.singular_u - 0.5;
       const std::size_t stride = batch_stride(count);
       for (const Implementation* impl : available_implementations()) {
         SCOPED_TRACE(std::string(impl->name) + " n=" + std::to_string(n) + " count=" + std::to_string(count));
@@ -206,26 +223,12 @@ TEST(BezoutNullVectorSeed, TheResidualOnlyWhereTheSeedSettledIsTheSameBitForBit)
   constexpr std::size_t count = 150;
   auto singular_lane = [](std::size_t l) { return (l < 120 && l % 7 == 0) || (l >= 64 && l < 96); };
   std::mt19937_64 rng(55);
-  std::uniform_real_distribution<double> spectrum(0.1, 1.0);
-  std::normal_distribution<double> gaussian;
   for (const int n : {3, 5, 8, 9, 15, 20, 24, kBezoutNullVectorSeedMaxSize}) {
-    Eigen::MatrixXd a(n, n);
-    for (int r = 0; r < n; ++r)
-      for (int c = 0; c < n; ++c) a(r, c) = gaussian(rng);
-    const Eigen::MatrixXd q = test_support::orthogonal_factor(a);
-    Eigen::VectorXd s(n);
-    for (int k = 0; k < n; ++k) s(k) = spectrum(rng) * (rng() % 2 ? 1.0 : -1.0);
-    const Eigen::MatrixXd b0 = q * s.asDiagonal() * q.transpose();
-    const Eigen::MatrixXd bx = q.col(n - 1) * q.col(n - 1).transpose();
+    const ConstructedPencil pencil = constructed_pencil(n, rng);
+    const std::vector<double>&B0 = pencil.B0, &Bx = pencil.Bx, &By = pencil.By;
     const std::size_t nn = static_cast<std::size_t>(n) * n, stride = batch_stride(count);
-    std::vector<double> B0(nn), Bx(nn), By(nn, 0.0);
-    for (int r = 0; r < n; ++r)
-      for (int c = 0; c <= r; ++c) {
-        B0[r * n + c] = B0[c * n + r] = b0(r, c);
-        Bx[r * n + c] = Bx[c * n + r] = bx(r, c);
-      }
     std::vector<double> u(count), v(count, 0.0);
-    for (std::size_t l = 0; l < count; ++l) u[l] = singular_lane(l) ? s(n - 1) : s(n - 1) - 0.5;
+    for (std::size_t l = 0; l < count; ++l) u[l] = singular_lane(l) ? pencil.singular_u : pencil.singular_u - 0.5;
     for (const Implementation* impl : available_implementations()) {
       SCOPED_TRACE(std::string(impl->name) + " n=" + std::to_string(n));
       // seed(settled_defect, outputs): the formed seed where it takes n, else the stored one on
