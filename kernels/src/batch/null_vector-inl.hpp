@@ -33,19 +33,6 @@ namespace bezinv::kernels::HWY_NAMESPACE {
 // lanes processed side by side.
 namespace hn = wide;
 
-// The defect says how far z may be from the singular vector of sigma_n: the larger of
-//   1. chord(x_{k-1}, x_k) over the last two iterations: the iteration has not settled (no gap);
-//   2. eps ||B||_F / sigma_{n-1}, with 1/sigma_{n-1} estimated by inverse iteration orthogonal to z:
-//      the first-order forward error of a computed null vector (backward error eps ||B|| over the
-//      gap, Wedin / Davis-Kahan). For nullity 2 it is ~1 however the rounding happened to split
-//      the two tiny singular values, which measure 1 alone cannot promise: with two tiny singular
-//      values of ratio r, the iterates converge at rate 1/r in the 2-D null space, and r may be
-//      large by chance.
-// Rank n-1 with sigma_{n-1} >= 1e-4 ||B||: both ~1e-12 or less. Capped at 1. Whether B is singular
-// at all is the residual's to say (||B z|| / ||B||_F, reported apart): a point near the curve but
-// off it has a slightly regular B whose z is as good a seed as a null vector.
-// kGap false (the seeds): z from L D L^T without pivoting (Ldlt), measure 1 alone, and no
-// deflated iterations, no sigma_{n-1} estimate, no second vector.
 // ||B x|| for every lane of a group, B's entries from `entry(r, c)` (r >= c) and x as x[r L + lane]:
 // B x from the lower triangle in one pass over it, entry (r, c), c < r, adding to row r (in a
 // register) and to row c (in y).
@@ -68,6 +55,19 @@ HWY_INLINE wide::Vec<D> residual_norm(D d, const Entry& entry, const double* HWY
   return hn::Sqrt(residual2);
 }
 
+// The defect says how far z may be from the singular vector of sigma_n: the larger of
+//   1. chord(x_{k-1}, x_k) over the last two iterations: the iteration has not settled (no gap);
+//   2. eps ||B||_F / sigma_{n-1}, with 1/sigma_{n-1} estimated by inverse iteration orthogonal to z:
+//      the first-order forward error of a computed null vector (backward error eps ||B|| over the
+//      gap, Wedin / Davis-Kahan). For nullity 2 it is ~1 however the rounding happened to split
+//      the two tiny singular values, which measure 1 alone cannot promise: with two tiny singular
+//      values of ratio r, the iterates converge at rate 1/r in the 2-D null space, and r may be
+//      large by chance.
+// Rank n-1 with sigma_{n-1} >= 1e-4 ||B||: both ~1e-12 or less. Capped at 1. Whether B is singular
+// at all is the residual's to say (||B z|| / ||B||_F, reported apart): a point near the curve but
+// off it has a slightly regular B whose z is as good a seed as a null vector.
+// kGap false (the seeds): z from L D L^T without pivoting (Ldlt), measure 1 alone, and no
+// deflated iterations, no sigma_{n-1} estimate, no second vector.
 // The seeds (kGap false) compute the residual only for the lanes whose defect is at most
 // `settled_defect`, and write +inf for the others: a seed that has not settled is not used, and
 // its residual, which forms B a second time, is a fifth of the seed's work at n = 15. A group
