@@ -135,6 +135,23 @@ std::pair<Piece, Piece> halves(const Piece& piece) {
   return out;
 }
 
+// The box {x min, x max, y min, y max} of the segment's samples (plan.nearest_samples): where the
+// points near the curve are.
+std::array<double, 4> samples_box(const PlanData& plan) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::array<double, 4> box{inf, -inf, inf, -inf};
+  const std::vector<double>& samples = plan.nearest_samples;
+  for (std::size_t k = 0; k + 1 < samples.size(); k += 2)
+    for (int axis = 0; axis < 2; ++axis) {
+      box[2 * axis] = std::min(box[2 * axis], samples[k + axis]);
+      box[2 * axis + 1] = std::max(box[2 * axis + 1], samples[k + axis]);
+    }
+  return box;
+}
+
+// The diagonal of a box {x min, x max, y min, y max} (NaN for a NaN box).
+double box_diagonal(const std::array<double, 4>& box) { return std::hypot(box[1] - box[0], box[3] - box[2]); }
+
 // A piece's curve alone: X, Wx, Y, Wy and their bounds (Piece's first 8 (n + 1) coefficients),
 // for the boxes of its parts; on the stack, halved as halves() halves it.
 constexpr std::size_t kCurveStride = kMaxBernsteinDegree + 1;
@@ -206,20 +223,14 @@ void order_by_far_radius(OffCurveData& data) {
 // so that the pieces' loop takes no square root: it runs once per plan, pieces x cells.
 void make_extension_grid(const PlanData& plan, const OffCurveData& data, ExtensionGrid& grid) {
   constexpr int G = kExtensionGrid;
-  const std::vector<double>& samples = plan.nearest_samples;
   constexpr double inf = std::numeric_limits<double>::infinity();
-  std::array<double, 2> low{inf, inf}, high{-inf, -inf};
-  for (std::size_t k = 0; k + 1 < samples.size(); k += 2)
-    for (int axis = 0; axis < 2; ++axis) {
-      low[axis] = std::min(low[axis], samples[k + axis]);
-      high[axis] = std::max(high[axis], samples[k + axis]);
-    }
+  const std::array<double, 4> samples = samples_box(plan);
   const double side =
-      std::max(high[0] - low[0], high[1] - low[1]) + 2 * kExtensionGridMargin * plan.normalized_diagonal;
+      std::max(samples[1] - samples[0], samples[3] - samples[2]) + 2 * kExtensionGridMargin * plan.normalized_diagonal;
   if (!std::isfinite(side) || !(side > 0)) return;
   const double cell = side / G;
-  grid.u = 0.5 * (low[0] + high[0]) - 0.5 * side;
-  grid.v = 0.5 * (low[1] + high[1]) - 0.5 * side;
+  grid.u = 0.5 * (samples[0] + samples[1]) - 0.5 * side;
+  grid.v = 0.5 * (samples[2] + samples[3]) - 0.5 * side;
   grid.inverse_cell = 1.0 / cell;
   // The cells' edges, each cell widened by a millionth of its side: a point that the index's
   // arithmetic rounds into the next cell is still inside the one whose value it reads.
@@ -291,13 +302,7 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
   data.extension_degree = m;
   // Where points near the curve are: the box of the segment's samples, widened by
   // kExtensionPartRatio of the curve (the parts are for the pieces whose box reaches it).
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  std::array<double, 4> near_box{inf, -inf, inf, -inf};
-  for (std::size_t k = 0; k + 1 < plan.nearest_samples.size(); k += 2)
-    for (int axis = 0; axis < 2; ++axis) {
-      near_box[2 * axis] = std::min(near_box[2 * axis], plan.nearest_samples[k + axis]);
-      near_box[2 * axis + 1] = std::max(near_box[2 * axis + 1], plan.nearest_samples[k + axis]);
-    }
+  std::array<double, 4> near_box = samples_box(plan);
   for (int side = 0; side < 4; ++side) near_box[side] += (side % 2 ? 1 : -1) * kExtensionPartRatio * plan.normalized_diagonal;
   for (int half = 0; half < kHalves; ++half) {
     const std::array<BernsteinPoly, 4> curve = curve_on_half(plan, half, false),
@@ -331,7 +336,7 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
       for (int which = 0; which < 4; ++which) scale[which] = max_abs(piece.h(4 + which));
       const double far2 = far_radius2(piece.h(0), piece.h(3), scale[0], scale[3]);
       const double size = plan.normalized_diagonal;
-      const bool wide = !(std::hypot(box[1] - box[0], box[3] - box[2]) <= kExtensionBoxRatio * size);  // NaN: wide
+      const bool wide = !(box_diagonal(box) <= kExtensionBoxRatio * size);  // NaN: wide
       if (far2 < size * size && wide && level - kBaseLevels < kExtensionMaxPlanHalvings) {
         const auto [left, right] = halves(piece);
         self(self, left, level + 1);
@@ -349,7 +354,7 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
       // kExtensionPartHalvings deep; none where a part's box does not hold it.
       const std::size_t parts_before = data.extension_parts.size();
       const auto narrow = [&](const std::array<double, 4>& b) {
-        return std::hypot(b[1] - b[0], b[3] - b[2]) <= kExtensionPartRatio * size;  // NaN: not narrow
+        return box_diagonal(b) <= kExtensionPartRatio * size;  // NaN: not narrow
       };
       const bool reaches = box[0] <= near_box[1] && box[1] >= near_box[0] && box[2] <= near_box[3] && box[3] >= near_box[2];
       if (reaches && far2 < size * size && !narrow(box)) {  // reaches: false for a NaN box
@@ -373,10 +378,7 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
         CurveOnly whole_curve;
         for (int which = 0; which < 8; ++which)
           std::copy(piece.curve(which).begin(), piece.curve(which).end(), whole_curve.data() + which * kCurveStride);
-        CurveOnly left, right;
-        curve_halves(whole_curve, plan.degree, left, right);
-        add_part(add_part, left, 1);
-        add_part(add_part, right, 1);
+        add_part(add_part, whole_curve, 0);  // the piece itself, not narrow: halved at once
         if (!held) data.extension_parts.resize(parts_before);
       }
       data.extension_part_begin.push_back(static_cast<std::uint32_t>(data.extension_parts.size() / 4));

@@ -33,12 +33,19 @@ namespace bezinv::kernels::HWY_NAMESPACE {
 // lanes processed side by side.
 namespace hn = wide;
 
-// ||B x|| for every lane of a group, B's entries from `entry(r, c)` (r >= c) and x as x[r L + lane]:
-// B x from the lower triangle in one pass over it, entry (r, c), c < r, adding to row r (in a
-// register) and to row c (in y).
-template <int N, class D, class Entry>
-HWY_INLINE wide::Vec<D> residual_norm(D d, const Entry& entry, const double* HWY_RESTRICT x) {
+// Entry (r, c) of a symmetric n x n matrix from its lower triangle, the only one the kernels read.
+template <int N, class Matrix>
+HWY_INLINE auto lower_entry(const Matrix& matrix, int r, int c) {
+  return matrix.entry(static_cast<std::size_t>(r >= c ? r * N + c : c * N + r));
+}
+
+// ||B x|| for every lane of a group, B a GroupMatrix (matrix_source-inl.hpp) and x as
+// x[r L + lane]: B x from the lower triangle in one pass over it, entry (r, c), c < r, adding to
+// row r (in a register) and to row c (in y).
+template <int N, class D, class Matrix>
+HWY_INLINE wide::Vec<D> residual_norm(D d, const Matrix& matrix, const double* HWY_RESTRICT x) {
   constexpr std::size_t L = hn::MaxLanes(D());
+  auto entry = [&](int r, int c) { return lower_entry<N>(matrix, r, c); };
   HWY_ALIGN double y[N * L];
   for (int r = 0; r < N; ++r) {
     const auto xr = hn::Load(d, x + r * L);
@@ -87,9 +94,7 @@ HWY_NOINLINE bool null_vector_group(D d, std::size_t stride, std::size_t first, 
   const auto one = hn::Set(d, 1.0);
   const GroupMatrix<Source, D> matrix(d, source, stride, first, lanes);
   constexpr bool kFormed = GroupMatrix<Source, D>::kFormed;
-  auto entry = [&](int r, int c) {  // B(r, c) from the lower triangle
-    return matrix.entry(static_cast<std::size_t>(r >= c ? r * N + c : c * N + r));
-  };
+  auto entry = [&](int r, int c) { return lower_entry<N>(matrix, r, c); };
   // One pass over B's lower triangle (stored: at high degree in L2 only; formed: from the
   // coefficients, matrix_source-inl.hpp) copies it into the factorization's storage and sums
   // ||B||_F^2: the diagonal, and twice the entries below it, one partial sum per row (a single
@@ -165,27 +170,25 @@ HWY_NOINLINE bool null_vector_group(D d, std::size_t stride, std::size_t first, 
   // ||B z|| / ||B||_F with the original entries (scaled once at the end: the same to rounding as
   // with the normalised entries, at n^2 fewer multiplications). The seeds: where settled only
   // (above).
-  const auto nan = hn::Set(d, std::numeric_limits<double>::quiet_NaN());
   auto residual_out = hn::Set(d, std::numeric_limits<double>::infinity());
   bool deferred = false;
   if constexpr (kGap) {
-    residual_out = hn::IfThenElse(zero_matrix, hn::Zero(d), hn::Mul(residual_norm<N>(d, entry, x), scale));
+    residual_out = hn::IfThenElse(zero_matrix, hn::Zero(d), hn::Mul(residual_norm<N>(d, matrix, x), scale));
   } else {
     const auto settled = hn::Le(result, hn::Set(d, settled_defect));
-    bool in_place = !hn::AllFalse(d, settled);
-    if (in_place && deferred_scale != nullptr) {  // some lanes settled: all of them (padding aside)?
+    if (!hn::AllFalse(d, settled)) {
+      // Some lanes settled: are they all (padding aside), or may the others' be left to the caller?
       const auto not_settled = lanes == L ? hn::Not(settled) : hn::AndNot(settled, hn::FirstN(d, lanes));
-      if (!hn::AllFalse(d, not_settled)) {
+      deferred = deferred_scale != nullptr && !hn::AllFalse(d, not_settled);
+      if (deferred) {
         HWY_ALIGN double scale_lanes[L];
-        hn::Store(hn::IfThenElse(settled, scale, nan), d, scale_lanes);
+        hn::Store(hn::IfThenElse(settled, scale, hn::Set(d, std::numeric_limits<double>::quiet_NaN())), d,
+                  scale_lanes);
         for (std::size_t l = 0; l < lanes; ++l) deferred_scale[l] = scale_lanes[l];
-        in_place = false;
-        deferred = true;
+      } else {
+        const auto residual = hn::IfThenElse(zero_matrix, hn::Zero(d), hn::Mul(residual_norm<N>(d, matrix, x), scale));
+        residual_out = hn::IfThenElse(settled, residual, residual_out);
       }
-    }
-    if (in_place) {
-      const auto residual = hn::IfThenElse(zero_matrix, hn::Zero(d), hn::Mul(residual_norm<N>(d, entry, x), scale));
-      residual_out = hn::IfThenElse(settled, residual, residual_out);
     }
   }
   // A zero matrix has every direction null: no gap.

@@ -76,14 +76,11 @@ void seed_formed(std::size_t count, std::size_t stride, const BezoutMatrices<kBi
     for (std::size_t first = 0; first < deferred; first += L) {
       const std::size_t count_here = std::min(L, deferred - first);
       const GroupMatrix<BezoutMatrices<kBilinear>, Wide> matrix(Wide(), compacted, stride, first, count_here);
-      auto entry = [&](int r, int c) {
-        return matrix.entry(static_cast<std::size_t>(r >= c ? r * N + c : c * N + r));
-      };
       HWY_ALIGN double x[N * L] = {};
       for (std::size_t j = 0; j < count_here; ++j)
         for (int r = 0; r < N; ++r) x[r * L + j] = z[static_cast<std::size_t>(r) * stride + chunk + lane_of[first + j]];
       HWY_ALIGN double out[L];
-      wide::Store(wide::Mul(residual_norm<N>(Wide(), entry, x), wide::LoadGroup(Wide(), lane_scale, first, count_here, 0.0)),
+      wide::Store(wide::Mul(residual_norm<N>(Wide(), matrix, x), wide::LoadGroup(Wide(), lane_scale, first, count_here, 0.0)),
                   Wide(), out);
       for (std::size_t j = 0; j < count_here; ++j) residual[chunk + lane_of[first + j]] = out[j];
     }
