@@ -58,6 +58,24 @@ std::array<BernsteinPoly, 4> clearance_polynomials(const std::array<BernsteinPol
           scaled(product(Wx2, product(Y, Wy)), bound ? 2.0 : -2.0), product(Wx2, Wy2)};
 }
 
+// Control point k of a piece along one axis (0: x = X / Wx, 1: y = Y / Wy) and the bound of its
+// rounding, from the bounds of the coefficients' terms.
+struct ControlCoordinate {
+  double value, error;
+};
+ControlCoordinate control_coordinate(Span X, Span Wx, Span Y, Span Wy, const std::array<Span, 4>& bounds, int k,
+                                     int axis) {
+  const double gamma = kStationarySignUlps * static_cast<double>(X.size()) * kEpsilon;
+  const double num = axis == 0 ? X[k] : Y[k], den = axis == 0 ? Wx[k] : Wy[k];
+  const double value = num / den;
+  return {value, gamma * (bounds[2 * axis][k] + std::abs(value) * bounds[2 * axis + 1][k]) / std::abs(den)};
+}
+
+bool one_sign(Span w) {
+  return std::all_of(w.begin(), w.end(), [](double v) { return v > 0; }) ||
+         std::all_of(w.begin(), w.end(), [](double v) { return v < 0; });
+}
+
 // The box of a piece's control points (x from X / Wx, y from Y / Wy), widened by the rounding of
 // the coefficients; NaN where a weight is not of the piece's one sign (the box would not hold it).
 std::array<double, 4> control_box(Span X, Span Wx, Span Y, Span Wy, const std::array<Span, 4>& bounds) {
@@ -65,22 +83,57 @@ std::array<double, 4> control_box(Span X, Span Wx, Span Y, Span Wy, const std::a
   std::array<double, 4> box{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
                             std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
   const int n = static_cast<int>(X.size()) - 1;
-  const double gamma = kStationarySignUlps * (n + 1) * kEpsilon;
-  const auto one_sign = [](Span w) {
-    return std::all_of(w.begin(), w.end(), [](double v) { return v > 0; }) ||
-           std::all_of(w.begin(), w.end(), [](double v) { return v < 0; });
-  };
   if (!one_sign(Wx) || !one_sign(Wy)) return {nan, nan, nan, nan};
   for (int k = 0; k <= n; ++k)
     for (int axis = 0; axis < 2; ++axis) {
-      const double num = axis == 0 ? X[k] : Y[k], den = axis == 0 ? Wx[k] : Wy[k];
-      const double value = num / den;
-      const double error = gamma * (bounds[2 * axis][k] + std::abs(value) * bounds[2 * axis + 1][k]) / std::abs(den);
+      const auto [value, error] = control_coordinate(X, Wx, Y, Wy, bounds, k, axis);
       if (!std::isfinite(value) || !std::isfinite(error)) return {nan, nan, nan, nan};
       box[2 * axis] = std::min(box[2 * axis], value - error);
       box[2 * axis + 1] = std::max(box[2 * axis + 1], value + error);
     }
   return box;
+}
+
+// The capsule of a piece's control points (header, kCapsuleStride): the chord from the first to
+// the last and the largest distance of a control point from it, widened by the points' rounding
+// and by that of the distances (a few ulps of the coordinates). All NaN where the curve has two
+// denominators (x = X / Wx and y = Y / Wy are then not one convex combination of the control
+// points) or a weight is not of the piece's one sign.
+std::array<double, kCapsuleStride> control_capsule(Span X, Span W, Span Y, const std::array<Span, 4>& bounds,
+                                                   bool common_denominator) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (!common_denominator || !one_sign(W)) return {nan, nan, nan, nan, nan};
+  const int n = static_cast<int>(X.size()) - 1;
+  const auto x = [&](int k) { return control_coordinate(X, W, Y, W, bounds, k, 0); };
+  const auto y = [&](int k) { return control_coordinate(X, W, Y, W, bounds, k, 1); };
+  const double ax = x(0).value, ay = y(0).value, bx = x(n).value, by = y(n).value;
+  const double dx = bx - ax, dy = by - ay, length2 = dx * dx + dy * dy;
+  double reach = 0.0, size = std::abs(ax) + std::abs(ay) + std::abs(dx) + std::abs(dy);
+  for (int k = 0; k <= n; ++k) {
+    const auto [qx, ex] = x(k);
+    const auto [qy, ey] = y(k);
+    const double px = qx - ax, py = qy - ay, along = px * dx + py * dy;
+    const double s = !(along > 0) || !(length2 > 0) ? 0.0 : along >= length2 ? 1.0 : along / length2;
+    reach = std::max(reach, std::hypot(px - s * dx, py - s * dy) + std::hypot(ex, ey));
+    size = std::max(size, std::abs(qx) + std::abs(qy));
+  }
+  reach = reach * (1 + 1e-12) + 16 * kEpsilon * size;
+  if (!std::isfinite(reach) || !std::isfinite(size)) return {nan, nan, nan, nan, nan};
+  return {ax, ay, bx, by, reach};
+}
+
+// Whether (u0, v0) is farther than `radius` from every point within the capsule's reach of its
+// chord (false for a NaN capsule). The computed projection s is some point of the chord, a few
+// ulps of the coordinates from the nearest (the distance is stationary in s there): the slack
+// on the reach covers that and the rounding of the distance.
+bool capsule_clear(const double* c, double u0, double v0, double radius) {
+  const double dx = c[2] - c[0], dy = c[3] - c[1], px = u0 - c[0], py = v0 - c[1];
+  const double length2 = dx * dx + dy * dy, along = px * dx + py * dy;
+  const double s = !(along > 0) || !(length2 > 0) ? 0.0 : along >= length2 ? 1.0 : along / length2;
+  const double ex = px - s * dx, ey = py - s * dy;
+  const double reach =
+      (c[4] + radius) * (1 + 8 * kEpsilon) + 8 * kEpsilon * (std::abs(px) + std::abs(py) + std::abs(dx) + std::abs(dy));
+  return ex * ex + ey * ey > reach * reach;
 }
 
 // The square of a radius R about the origin that the piece stays outside: h at P0 = 0 and r = R,
@@ -168,13 +221,20 @@ std::array<double, 4> curve_box(const CurveOnly& curve, int n) {
   return control_box(span(0), span(1), span(2), span(3), {span(4), span(5), span(6), span(7)});
 }
 
-// Whether (u0, v0) is farther than the radius from every part of the piece (false where the
-// piece has no parts).
-bool parts_clear(const OffCurveData& data, int piece, double u0, double v0, double radius2) {
+std::array<double, kCapsuleStride> curve_capsule(const CurveOnly& curve, int n, bool common_denominator) {
+  auto span = [&](std::size_t which) { return Span(curve.data() + which * kCurveStride, static_cast<std::size_t>(n + 1)); };
+  return control_capsule(span(0), span(1), span(2), {span(4), span(5), span(6), span(7)}, common_denominator);
+}
+
+// Whether (u0, v0) is farther than the radius from every part of the piece, by the part's box or
+// its capsule (false where the piece has no parts).
+bool parts_clear(const OffCurveData& data, int piece, double u0, double v0, double radius) {
   const std::uint32_t begin = data.extension_part_begin[piece], end = data.extension_part_begin[piece + 1];
   if (begin == end) return false;
   for (std::uint32_t k = begin; k < end; ++k)
-    if (!(box_distance2(data.extension_parts.data() + 4 * static_cast<std::size_t>(k), u0, v0) > radius2)) return false;
+    if (!(box_distance2(data.extension_parts.data() + 4 * static_cast<std::size_t>(k), u0, v0) > radius * radius) &&
+        !capsule_clear(data.extension_part_capsules.data() + kCapsuleStride * static_cast<std::size_t>(k), u0, v0, radius))
+      return false;
   return true;
 }
 
@@ -194,7 +254,8 @@ void order_by_far_radius(OffCurveData& data) {
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
   const std::size_t h_size = 4 * static_cast<std::size_t>(m + 1);
   std::vector<double> h(data.extension_h.size()), scale(data.extension_scale.size()),
-      boxes(data.extension_boxes.size()), far2(pieces), parts;
+      boxes(data.extension_boxes.size()), far2(pieces), parts, capsules(data.extension_capsules.size()), part_capsules,
+      intervals(data.extension_intervals.size());
   std::vector<std::uint32_t> part_begin{0};
   parts.reserve(data.extension_parts.size());
   for (std::size_t k = 0; k < pieces; ++k) {
@@ -202,9 +263,14 @@ void order_by_far_radius(OffCurveData& data) {
     std::copy_n(data.extension_h.begin() + i * h_size, h_size, h.begin() + k * h_size);
     std::copy_n(data.extension_scale.begin() + 4 * i, 4, scale.begin() + 4 * k);
     std::copy_n(data.extension_boxes.begin() + 4 * i, 4, boxes.begin() + 4 * k);
+    std::copy_n(data.extension_capsules.begin() + kCapsuleStride * i, kCapsuleStride, capsules.begin() + kCapsuleStride * k);
+    std::copy_n(data.extension_intervals.begin() + 3 * i, 3, intervals.begin() + 3 * k);
     far2[k] = data.extension_far2[i];
     parts.insert(parts.end(), data.extension_parts.begin() + 4 * data.extension_part_begin[i],
                  data.extension_parts.begin() + 4 * data.extension_part_begin[i + 1]);
+    part_capsules.insert(part_capsules.end(),
+                         data.extension_part_capsules.begin() + kCapsuleStride * data.extension_part_begin[i],
+                         data.extension_part_capsules.begin() + kCapsuleStride * data.extension_part_begin[i + 1]);
     part_begin.push_back(static_cast<std::uint32_t>(parts.size() / 4));
   }
   data.extension_h = std::move(h);
@@ -212,6 +278,9 @@ void order_by_far_radius(OffCurveData& data) {
   data.extension_boxes = std::move(boxes);
   data.extension_far2 = std::move(far2);
   data.extension_parts = std::move(parts);
+  data.extension_capsules = std::move(capsules);
+  data.extension_part_capsules = std::move(part_capsules);
+  data.extension_intervals = std::move(intervals);
   data.extension_part_begin = std::move(part_begin);
 }
 
@@ -297,6 +366,9 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
   data.extension_far2.clear();
   data.extension_parts.clear();
   data.extension_part_begin.assign(1, 0);
+  data.extension_capsules.clear();
+  data.extension_part_capsules.clear();
+  data.extension_intervals.clear();
   if (plan.degree < 2) return;
   const int m = (plan.common_denominator ? 2 : 4) * plan.degree;
   data.extension_degree = m;
@@ -322,11 +394,11 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
     // weight of the other sign: a pole nearby) or is wider than kExtensionBoxRatio of the curve.
     // Points near the curve then pay the h test only on a few narrow pieces. Depth first, left
     // half first (then ordered by far radius, below).
-    const auto add = [&](auto&& self, const Piece& piece, int level) -> void {
+    const auto add = [&](auto&& self, const Piece& piece, int level, double a, double b) -> void {
       if (level < kBaseLevels) {
         const auto [left, right] = halves(piece);
-        self(self, left, level + 1);
-        self(self, right, level + 1);
+        self(self, left, level + 1, a, 0.5 * (a + b));
+        self(self, right, level + 1, 0.5 * (a + b), b);
         return;
       }
       const std::array<double, 4> box =
@@ -339,15 +411,20 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
       const bool wide = !(box_diagonal(box) <= kExtensionBoxRatio * size);  // NaN: wide
       if (far2 < size * size && wide && level - kBaseLevels < kExtensionMaxPlanHalvings) {
         const auto [left, right] = halves(piece);
-        self(self, left, level + 1);
-        self(self, right, level + 1);
+        self(self, left, level + 1, a, 0.5 * (a + b));
+        self(self, right, level + 1, 0.5 * (a + b), b);
         return;
       }
+      data.extension_intervals.insert(data.extension_intervals.end(), {static_cast<double>(half), a, b});
       for (int which = 0; which < 4; ++which) {
         data.extension_h.insert(data.extension_h.end(), piece.h(which).begin(), piece.h(which).end());
         data.extension_scale.push_back(scale[which]);
       }
       data.extension_boxes.insert(data.extension_boxes.end(), box.begin(), box.end());
+      const std::array<double, kCapsuleStride> capsule =
+          control_capsule(piece.curve(0), piece.curve(1), piece.curve(2),
+                          {piece.curve(4), piece.curve(5), piece.curve(6), piece.curve(7)}, plan.common_denominator);
+      data.extension_capsules.insert(data.extension_capsules.end(), capsule.begin(), capsule.end());
       data.extension_far2.push_back(far2);
       // Its parts (header): where its box reaches the segment's surroundings and is wider than
       // kExtensionPartRatio of the curve, halved, the curve alone, until each is narrower or
@@ -368,6 +445,8 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
           }
           if (halvings == kExtensionPartHalvings || narrow(part)) {
             data.extension_parts.insert(data.extension_parts.end(), part.begin(), part.end());
+            const std::array<double, kCapsuleStride> capsule = curve_capsule(curve, plan.degree, plan.common_denominator);
+            data.extension_part_capsules.insert(data.extension_part_capsules.end(), capsule.begin(), capsule.end());
             return;
           }
           CurveOnly left, right;
@@ -379,11 +458,14 @@ void extension_pieces(const PlanData& plan, OffCurveData& data) {
         for (int which = 0; which < 8; ++which)
           std::copy(piece.curve(which).begin(), piece.curve(which).end(), whole_curve.data() + which * kCurveStride);
         add_part(add_part, whole_curve, 0);  // the piece itself, not narrow: halved at once
-        if (!held) data.extension_parts.resize(parts_before);
+        if (!held) {
+          data.extension_parts.resize(parts_before);
+          data.extension_part_capsules.resize(parts_before / 4 * kCapsuleStride);
+        }
       }
       data.extension_part_begin.push_back(static_cast<std::uint32_t>(data.extension_parts.size() / 4));
     };
-    add(add, whole, 0);
+    add(add, whole, 0, 0.0, 1.0);
   }
   order_by_far_radius(data);
 }
@@ -415,7 +497,9 @@ bool extension_clear(const PlanData& plan, double u0, double v0, double radius, 
     if (beyond2 < data.extension_far2[piece]) break;  // and every piece after it (order_by_far_radius)
     const double* box = data.extension_boxes.data() + piece * 4;
     if (box[0] == box[0] && box_distance2(box, u0, v0) > radius2) continue;  // not NaN: the box holds the piece
-    if (parts_clear(data, piece, u0, v0, radius2)) continue;
+    if (capsule_clear(data.extension_capsules.data() + kCapsuleStride * static_cast<std::size_t>(piece), u0, v0, radius))
+      continue;
+    if (parts_clear(data, piece, u0, v0, radius)) continue;
     const double* H = data.extension_h.data() + static_cast<std::size_t>(piece) * 4 * (m + 1);
     const double* scale = data.extension_scale.data() + piece * 4;
     const double slack = gamma * (scale[0] + std::abs(u0) * scale[1] + std::abs(v0) * scale[2] + c_bound * scale[3]);

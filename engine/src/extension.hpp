@@ -28,7 +28,13 @@
 // pieces with four comparisons (make_plan halves the pieces around a pole until it does, for all
 // but a narrow one), and a wide one near the curve keeps the boxes of its parts (the convex hull
 // of a part's control points lies in that of the piece's, so they bound it more closely, and a
-// point farther than the radius from all of them is clear of the piece). A piece far out (towards a pole, or towards infinity on a polynomial curve)
+// point farther than the radius from all of them is clear of the piece). Where the curve has one
+// denominator, a piece and each part also keep a capsule: the chord between their ends and the
+// largest distance of a control point from it. The piece is in the convex hull of its control
+// points, which the capsule holds, so a point farther than that reach plus the radius from the
+// chord is clear; a box stands off a slanted piece by up to half its width, a capsule by about
+// its sagitta, so points beside the extension near the segment's ends clear without the h test.
+// A piece far out (towards a pole, or towards infinity on a polynomial curve)
 // clears with one: make_plan finds a radius R about the origin it stays outside (H0 - R^2 Hw
 // has positive coefficients), and |P - P0| >= R - |P0|. A piece none of these clears is halved
 // (de Casteljau) a few times per point. Before any piece, a grid over the segment's surroundings
@@ -55,6 +61,8 @@ inline constexpr double kExtensionBoxRatio = 0.25;
 // grid takes the parts' boxes too, so it clears more cells.
 inline constexpr double kExtensionPartRatio = 0.05;
 inline constexpr int kExtensionPartHalvings = 2;
+// A capsule's doubles: a x, a y, b x, b y (the chord), reach (extension_capsules).
+inline constexpr int kCapsuleStride = 5;
 // How many times a piece that is not yet clear may be halved for one point.
 inline constexpr int kExtensionMaxHalvings = 8;
 // The grid that clears most points before any piece is looked at (a point otherwise scans the
@@ -67,7 +75,8 @@ inline constexpr double kExtensionGridMargin = 0.25;
 inline constexpr std::size_t kExtensionGridAfter = 512;
 
 // Fills plan.extension_degree, extension_h, extension_scale, extension_boxes, extension_far2,
-// extension_parts and extension_part_begin (degree >= 2).
+// extension_parts, extension_part_begin, extension_capsules and extension_part_capsules
+// (degree >= 2).
 void extension_pieces(const PlanData& plan, OffCurveData& data);
 
 // Whether no point of the curve with t outside [0, 1] (nor at t = infinity) is within `radius` of

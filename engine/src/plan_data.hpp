@@ -89,6 +89,14 @@ struct OffCurveData {
   // (extension.hpp, kExtensionPartRatio).
   std::vector<double> extension_parts;
   std::vector<std::uint32_t> extension_part_begin;
+  // Per piece and per part, a capsule that holds it: the chord from its first control point to its
+  // last and a reach about it that every control point is within (a x, a y, b x, b y, reach,
+  // extension.hpp, kCapsuleStride each; NaN reach where there is none: separate denominators, or
+  // weights not of one sign). Parallel to extension_boxes and extension_parts.
+  std::vector<double> extension_capsules, extension_part_capsules;
+  // Per piece, where it is: its half (0: t >= 1, 1: t <= 0) and its interval of s, three doubles
+  // each (for the tests and for diagnostics; the proof does not read them).
+  std::vector<double> extension_intervals;
 };
 
 // What clears most points of the extension at once (engine/src/extension.hpp, extension_grid):

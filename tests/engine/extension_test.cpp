@@ -222,15 +222,16 @@ TEST(Extension, AHyperbolaThroughItsPoles) {
   EXPECT_GT(cleared, tried * 9 / 10);
 }
 
-// Every point of the extension lies in the box of some piece, and, where that piece has parts, in
-// the box of one of them (to a part in 1e12 of the diagonal): the parts cover their piece, stay
-// with it when the pieces are put in order, and a point outside all of a piece's parts is clear of
-// it. Every kind, degrees 2-20; the extension evaluated independently (extension_point). Some
-// pieces must have parts, or the test would prove nothing.
-TEST(Extension, EveryPointOfTheExtensionIsInAPartOfItsPiece) {
+// Every point of the extension lies in the box and the capsule of its piece (the one whose
+// interval of s holds it), and, where that piece has parts, in the box and the capsule of one of
+// them (to a part in 1e12 of the diagonal): they hold their piece, stay with it when the pieces
+// are put in order, and a point outside all of them is clear of it. Every kind, degrees 2-20; the
+// extension evaluated independently (extension_point). Some pieces must have parts and
+// capsules, and most points a piece with a box, or the test would prove nothing.
+TEST(Extension, EveryPointOfTheExtensionIsInThePartsAndCapsulesOfItsPiece) {
   std::mt19937_64 rng(47);
   const std::vector<Real> ts = extension_parameters();
-  std::size_t with_parts = 0, points = 0;
+  std::size_t with_parts = 0, with_capsules = 0, points = 0, boxed = 0;
   for (const CurveKind kind : kAllKinds)
     for (int n = 2; n <= 20; n += 3) {
       SCOPED_TRACE(std::string(to_string(kind)) + " degree " + std::to_string(n));
@@ -238,32 +239,57 @@ TEST(Extension, EveryPointOfTheExtensionIsInAPartOfItsPiece) {
       const detail::OffCurveData& data = detail::off_curve_data(plan);
       const int pieces = static_cast<int>(data.extension_far2.size());
       ASSERT_EQ(data.extension_part_begin.size(), static_cast<std::size_t>(pieces) + 1);
-      for (int piece = 0; piece < pieces; ++piece)
+      ASSERT_EQ(data.extension_capsules.size(), static_cast<std::size_t>(pieces) * detail::kCapsuleStride);
+      ASSERT_EQ(data.extension_intervals.size(), static_cast<std::size_t>(pieces) * 3);
+      ASSERT_EQ(data.extension_part_capsules.size() / detail::kCapsuleStride, data.extension_parts.size() / 4);
+      for (int piece = 0; piece < pieces; ++piece) {
         with_parts += data.extension_part_begin[piece + 1] > data.extension_part_begin[piece];
+        with_capsules += !std::isnan(data.extension_capsules[detail::kCapsuleStride * piece + 4]);
+      }
       const double slack = 1e-12 * plan.normalized_diagonal;
-      const auto inside = [&](const double* box, const std::array<Real, 2>& q) {
+      const auto in_box = [&](const double* box, const std::array<Real, 2>& q) {
         return !(box[0] == box[0]) || (q[0] >= box[0] - slack && q[0] <= box[1] + slack && q[1] >= box[2] - slack &&
                                        q[1] <= box[3] + slack);
       };
+      // The distance from q to the chord, in long double from the stored doubles.
+      const auto in_capsule = [&](const double* c, const std::array<Real, 2>& q) {
+        if (std::isnan(c[4])) return true;
+        const Real dx = Real{c[2]} - c[0], dy = Real{c[3]} - c[1], px = q[0] - c[0], py = q[1] - c[1];
+        const Real length2 = dx * dx + dy * dy;
+        const Real s = length2 > 0 ? std::clamp((px * dx + py * dy) / length2, Real{0}, Real{1}) : Real{0};
+        return std::hypot(px - s * dx, py - s * dy) <= c[4] + slack;
+      };
       for (std::size_t k = 0; k < ts.size(); k += 7) {
-        const std::array<Real, 2> q = extension_point(plan, ts[k]);
+        const Real t = ts[k];
+        const std::array<Real, 2> q = extension_point(plan, t);
         if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || std::abs(q[0]) > 1e6 || std::abs(q[1]) > 1e6) continue;
+        // The half and s of t (extension.hpp): t = 1 / (1 - s) for t >= 1, t = -s / (1 - s) for t <= 0.
+        const int half = t >= 1 ? 0 : 1;
+        const Real s = half == 0 ? 1 - 1 / t : t / (t - 1);
+        int piece = 0;
+        while (piece < pieces && !(data.extension_intervals[3 * piece] == half && data.extension_intervals[3 * piece + 1] <= s &&
+                                   s <= data.extension_intervals[3 * piece + 2]))
+          ++piece;
+        ASSERT_LT(piece, pieces) << "no piece holds t = " << static_cast<double>(t);
         ++points;
-        bool covered = false;
-        for (int piece = 0; piece < pieces && !covered; ++piece) {
-          if (!inside(data.extension_boxes.data() + 4 * piece, q)) continue;
-          const std::uint32_t begin = data.extension_part_begin[piece], end = data.extension_part_begin[piece + 1];
-          covered = begin == end;
-          for (std::uint32_t part = begin; part < end && !covered; ++part)
-            covered = inside(data.extension_parts.data() + 4 * static_cast<std::size_t>(part), q);
-        }
-        EXPECT_TRUE(covered) << "t = " << static_cast<double>(ts[k]) << ": (" << static_cast<double>(q[0]) << ", "
-                             << static_cast<double>(q[1]) << ")";
+        boxed += data.extension_boxes[4 * piece] == data.extension_boxes[4 * piece];
+        const auto held = [&](const double* box, const double* capsule) { return in_box(box, q) && in_capsule(capsule, q); };
+        bool covered = held(data.extension_boxes.data() + 4 * piece, data.extension_capsules.data() + detail::kCapsuleStride * piece);
+        const std::uint32_t begin = data.extension_part_begin[piece], end = data.extension_part_begin[piece + 1];
+        bool in_part = begin == end;
+        for (std::uint32_t part = begin; part < end && !in_part; ++part)
+          in_part = held(data.extension_parts.data() + 4 * static_cast<std::size_t>(part),
+                         data.extension_part_capsules.data() + detail::kCapsuleStride * static_cast<std::size_t>(part));
+        EXPECT_TRUE(covered && in_part) << "t = " << static_cast<double>(t) << ": (" << static_cast<double>(q[0]) << ", "
+                                        << static_cast<double>(q[1]) << ")";
       }
     }
   RecordProperty("pieces_with_parts", static_cast<int>(with_parts));
+  RecordProperty("pieces_with_capsules", static_cast<int>(with_capsules));
   EXPECT_GE(with_parts, 20u);
+  EXPECT_GE(with_capsules, 100u);
   EXPECT_GE(points, 1000u);
+  EXPECT_GE(boxed, points / 2);
 }
 
 // A polynomial curve's extension runs off to infinity as t grows: its pieces there are far from
