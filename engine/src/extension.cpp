@@ -316,6 +316,16 @@ void make_extension_grid(const PlanData& plan, const OffCurveData& data, Extensi
       corner[j * G + i] = std::sqrt(x * x + y * y);
     }
   std::vector<double> clear2(static_cast<std::size_t>(G) * G, inf);
+  // The cells' lists (ExtensionGrid): (cell, bound squared, piece) for every bound below
+  // listed_below, sorted by cell and bound below.
+  grid.listed_below = kExtensionGridListed * plan.normalized_diagonal;
+  const double listed2 = grid.listed_below * grid.listed_below;
+  struct Listed {
+    std::uint32_t cell;
+    double bound2;
+    std::uint32_t piece;
+  };
+  std::vector<Listed> listed;
   const std::size_t pieces = data.extension_far2.size();
   std::array<double, G> dx2, dy2;
   constexpr int kMostParts = 1 << kExtensionPartHalvings;
@@ -348,8 +358,22 @@ void make_extension_grid(const PlanData& plan, const OffCurveData& data, Extensi
         const double bound2 = by_box2 > by_radius2 ? by_box2 : by_radius2;
         double& value = clear2[static_cast<std::size_t>(j) * G + i];
         value = bound2 < value ? bound2 : value;
+        if (bound2 < listed2)
+          listed.push_back({static_cast<std::uint32_t>(j * G + i), bound2, static_cast<std::uint32_t>(piece)});
       }
   }
+  std::sort(listed.begin(), listed.end(), [](const Listed& a, const Listed& b) {
+    return a.cell != b.cell ? a.cell < b.cell : a.bound2 < b.bound2;
+  });
+  grid.near_begin.assign(static_cast<std::size_t>(G) * G + 1, 0);
+  grid.near_piece.resize(listed.size());
+  grid.near_bound.resize(listed.size());
+  for (std::size_t k = 0; k < listed.size(); ++k) {
+    ++grid.near_begin[listed[k].cell + 1];
+    grid.near_piece[k] = listed[k].piece;
+    grid.near_bound[k] = std::sqrt(listed[k].bound2) * (1.0 - 1e-9);  // as the cells' values, below
+  }
+  std::partial_sum(grid.near_begin.begin(), grid.near_begin.end(), grid.near_begin.begin());
   // Those sums, products and square roots round: a part in 1e9 below them is safely below the
   // exact values.
   for (double& value : clear2) value = std::sqrt(value) * (1.0 - 1e-9);
@@ -477,53 +501,85 @@ const ExtensionGrid* extension_grid(const PlanData& plan, std::size_t lanes, boo
   return &plan.extension_grid.get([&](ExtensionGrid& grid) { make_extension_grid(plan, data, grid); });
 }
 
-bool extension_clear(const PlanData& plan, double u0, double v0, double radius, const ExtensionGrid* grid) {
-  const OffCurveData& data = off_curve_data(plan);
+namespace {
+
+// A point and radius as every piece's tests need them: with c = |P0|^2 - r^2 the piece's h is
+// H0 + u0 Hx + v0 Hy + c Hw (header), and c_bound = |P0|^2 + r^2 bounds c's part of its rounding.
+struct Clearance {
+  double u0, v0, radius, radius2, c, c_bound, gamma;
+  Clearance(int m, double u0_, double v0_, double radius_)
+      : u0(u0_), v0(v0_), radius(radius_), radius2(radius_ * radius_), c(u0_ * u0_ + v0_ * v0_ - radius2),
+        c_bound(u0_ * u0_ + v0_ * v0_ + radius2), gamma(kStationarySignUlps * (m + 1) * kEpsilon) {}
+};
+
+// Whether the piece is clear of the point: its box, its capsule or its parts, else its h with
+// every coefficient positive beyond its rounding, the piece halved (de Casteljau) up to
+// kExtensionMaxHalvings times until each part says.
+bool piece_clear(const OffCurveData& data, int piece, const Clearance& q) {
   const int m = data.extension_degree;
-  if (m == 0 || !std::isfinite(u0) || !std::isfinite(v0) || !(radius >= 0)) return false;
-  if (grid && grid_clears(*grid, u0, v0, radius)) return true;  // most points
-  const double radius2 = radius * radius;
-  const double c = u0 * u0 + v0 * v0 - radius2, c_bound = u0 * u0 + v0 * v0 + radius2;
-  const double gamma = kStationarySignUlps * (m + 1) * kEpsilon;
+  const double* box = data.extension_boxes.data() + piece * 4;
+  if (box[0] == box[0] && box_distance2(box, q.u0, q.v0) > q.radius2) return true;  // not NaN: the box holds the piece
+  if (capsule_clear(data.extension_capsules.data() + kCapsuleStride * static_cast<std::size_t>(piece), q.u0, q.v0, q.radius))
+    return true;
+  if (parts_clear(data, piece, q.u0, q.v0, q.radius)) return true;
   struct Interval {
     int halvings;
     std::array<double, kMaxBernsteinDegree + 1> h;
   };
   std::array<Interval, kExtensionMaxHalvings + 2> stack;
+  const double* H = data.extension_h.data() + static_cast<std::size_t>(piece) * 4 * (m + 1);
+  const double* scale = data.extension_scale.data() + piece * 4;
+  const double slack =
+      q.gamma * (scale[0] + std::abs(q.u0) * scale[1] + std::abs(q.v0) * scale[2] + q.c_bound * scale[3]);
+  int waiting = 0;
+  Interval& first = stack[waiting++];
+  first.halvings = 0;
+  for (int k = 0; k <= m; ++k)
+    first.h[k] = H[k] + q.u0 * H[m + 1 + k] + q.v0 * H[2 * (m + 1) + k] + q.c * H[3 * (m + 1) + k];
+  while (waiting > 0) {
+    Interval& here = stack[--waiting];
+    // The end coefficients are h at the ends: a negative one is a point of the curve within r.
+    if (!(here.h[0] > -slack) || !(here.h[m] > -slack)) return false;
+    bool positive = true;
+    for (int k = 0; k <= m && positive; ++k) positive = here.h[k] > slack;
+    if (positive) continue;
+    if (here.halvings == kExtensionMaxHalvings) return false;
+    // The halves in this slot and the next; the slack stays the piece's (de Casteljau's convex
+    // combinations do not enlarge the terms).
+    const int halvings = here.halvings + 1;
+    Interval& left = stack[waiting + 1];
+    split(here.h.data(), m, 0.5, left.h.data(), here.h.data());
+    left.halvings = here.halvings = halvings;
+    waiting += 2;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool extension_clear(const PlanData& plan, double u0, double v0, double radius, const ExtensionGrid* grid) {
+  const OffCurveData& data = off_curve_data(plan);
+  const int m = data.extension_degree;
+  if (m == 0 || !std::isfinite(u0) || !std::isfinite(v0) || !(radius >= 0)) return false;
+  const Clearance q(m, u0, v0, radius);
+  if (const std::size_t cell = grid ? grid_cell(*grid, u0, v0) : kNoCell; cell != kNoCell) {
+    if (radius < grid->clear[cell]) return true;  // most points
+    // The cell's list holds every piece whose bound for the cell is below listed_below, nearest
+    // first: those beyond the radius pass their quick tests, the others are tested.
+    if (radius < grid->listed_below) {
+      for (std::uint32_t k = grid->near_begin[cell]; k < grid->near_begin[cell + 1]; ++k) {
+        if (radius < grid->near_bound[k]) break;
+        if (!piece_clear(data, static_cast<int>(grid->near_piece[k]), q)) return false;
+      }
+      return true;
+    }
+  }
   const int pieces = static_cast<int>(data.extension_boxes.size() / 4);
   // |P(t) - P0| >= |P(t)| - |P0| > radius wherever |P(t)| > |P0| + radius.
   const double beyond = std::sqrt(u0 * u0 + v0 * v0) + radius, beyond2 = beyond * beyond;
   for (int piece = 0; piece < pieces; ++piece) {
     if (beyond2 < data.extension_far2[piece]) break;  // and every piece after it (order_by_far_radius)
-    const double* box = data.extension_boxes.data() + piece * 4;
-    if (box[0] == box[0] && box_distance2(box, u0, v0) > radius2) continue;  // not NaN: the box holds the piece
-    if (capsule_clear(data.extension_capsules.data() + kCapsuleStride * static_cast<std::size_t>(piece), u0, v0, radius))
-      continue;
-    if (parts_clear(data, piece, u0, v0, radius)) continue;
-    const double* H = data.extension_h.data() + static_cast<std::size_t>(piece) * 4 * (m + 1);
-    const double* scale = data.extension_scale.data() + piece * 4;
-    const double slack = gamma * (scale[0] + std::abs(u0) * scale[1] + std::abs(v0) * scale[2] + c_bound * scale[3]);
-    int waiting = 0;
-    Interval& first = stack[waiting++];
-    first.halvings = 0;
-    for (int k = 0; k <= m; ++k)
-      first.h[k] = H[k] + u0 * H[m + 1 + k] + v0 * H[2 * (m + 1) + k] + c * H[3 * (m + 1) + k];
-    while (waiting > 0) {
-      Interval& here = stack[--waiting];
-      // The end coefficients are h at the ends: a negative one is a point of the curve within r.
-      if (!(here.h[0] > -slack) || !(here.h[m] > -slack)) return false;
-      bool positive = true;
-      for (int k = 0; k <= m && positive; ++k) positive = here.h[k] > slack;
-      if (positive) continue;
-      if (here.halvings == kExtensionMaxHalvings) return false;
-      // The halves in this slot and the next; the slack stays the piece's (de Casteljau's convex
-      // combinations do not enlarge the terms).
-      const int halvings = here.halvings + 1;
-      Interval& left = stack[waiting + 1];
-      split(here.h.data(), m, 0.5, left.h.data(), here.h.data());
-      left.halvings = here.halvings = halvings;
-      waiting += 2;
-    }
+    if (!piece_clear(data, piece, q)) return false;
   }
   return true;
 }

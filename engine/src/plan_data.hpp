@@ -102,10 +102,15 @@ struct OffCurveData {
 // What clears most points of the extension at once (engine/src/extension.hpp, extension_grid):
 // per cell of a kExtensionGrid x kExtensionGrid grid over the segment's surroundings (cell (i, j)
 // from u + i / inverse_cell, v + j / inverse_cell, row-major in j) a distance within which no piece
-// of the extension comes of any point of the cell. Empty where there is no extension.
+// of the extension comes of any point of the cell. Empty where there is no extension. Per cell
+// also the pieces whose own such distance is below listed_below, nearest first (cell k's from
+// near_begin[k] to near_begin[k + 1] in near_piece, their distances in near_bound).
 struct ExtensionGrid {
   double u = 0.0, v = 0.0, inverse_cell = 0.0;
   std::vector<double> clear;
+  double listed_below = 0.0;
+  std::vector<std::uint32_t> near_begin, near_piece;
+  std::vector<double> near_bound;
 };
 
 // A count that plans share between threads and a copy of a plan starts again at 0.

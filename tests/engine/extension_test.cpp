@@ -121,8 +121,9 @@ TEST(Extension, NeverClearWhereThePointIsWithinTheRadiusOfTheExtension) {
 }
 
 // The grid (extension_grid) on the same curves and points: its cell never clears a point with
-// the radius just above the nearest point of the extension; where it clears one, the pieces do
-// too (it is only a quicker way to the pieces' own box and radius tests); and it is worth having:
+// the radius just above the nearest point of the extension, nor do the pieces its cell lists;
+// where it clears one, the pieces do too (it is only a quicker way to the pieces' own box and
+// radius tests), and with its lists the answer is the full scan's; and it is worth having:
 // points near the middle of the segment, off the curve by 1e-4 to 1e-1 of its size with that as
 // the radius (as off_curve_path asks), are mostly cleared by their cell alone.
 TEST(Extension, TheGridClearsOnlyWhatThePiecesClear) {
@@ -138,17 +139,24 @@ TEST(Extension, TheGridClearsOnlyWhatThePiecesClear) {
         EXPECT_EQ(detail::extension_grid(plan, 0), grid);  // made once
         std::vector<std::array<Real, 2>> points;
         for (Real t : ts) points.push_back(extension_point(plan, t));
-        for (int i = 0; i < (test_support::kSanitizerTree ? 10 : 20); ++i) {
-          const bool near_middle = i % 2 == 0;
-          const Real t0 = near_middle ? datasets::uniform(rng, 0.3, 0.7) : datasets::uniform(rng, -0.6, 1.6);
+        for (int i = 0; i < (test_support::kSanitizerTree ? 15 : 30); ++i) {
+          // Near the middle of the segment; anywhere around it; close to the extension, where the
+          // cells' lists are used (a radius below kExtensionGridListed of the diagonal).
+          const bool near_middle = i % 3 == 0, close = i % 3 == 2;
+          const Real beyond = datasets::uniform(rng, 0.0, 0.3);
+          const Real t0 = near_middle ? datasets::uniform(rng, 0.3, 0.7)
+                          : close     ? (i % 2 ? 1 + beyond : -beyond)
+                                      : datasets::uniform(rng, -0.6, 1.6);
           const auto base = extension_point(plan, t0);
-          const double r = std::pow(10.0, datasets::uniform(rng, -4, near_middle ? -1 : 0)) *
+          const double r = std::pow(10.0, close ? datasets::uniform(rng, -5, -2.5) : datasets::uniform(rng, -4, near_middle ? -1 : 0)) *
                            plan.normalized_diagonal;
           const double angle = datasets::uniform(rng, 0.0, 6.283185307179586);
           const double u0 = static_cast<double>(base[0]) + r * std::cos(angle), v0 = static_cast<double>(base[1]) + r * std::sin(angle);
           const double nearest = static_cast<double>(nearest_on_grid(points, u0, v0));
           ASSERT_TRUE(std::isfinite(nearest));
           EXPECT_FALSE(detail::grid_clears(*grid, u0, v0, nearest * (1 + 1e-6)))
+              << to_string(kind) << " degree " << n << " t0 " << static_cast<double>(t0) << " nearest " << nearest;
+          EXPECT_FALSE(detail::extension_clear(plan, u0, v0, nearest * (1 + 1e-6), grid))
               << to_string(kind) << " degree " << n << " t0 " << static_cast<double>(t0) << " nearest " << nearest;
           for (double radius : {nearest * 0.99, nearest * 0.5, r}) {
             const bool cleared = detail::grid_clears(*grid, u0, v0, radius);
