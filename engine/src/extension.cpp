@@ -514,7 +514,7 @@ struct Clearance {
 
 // Whether the piece is clear of the point: its box, its capsule or its parts, else its h with
 // every coefficient positive beyond its rounding, the piece halved (de Casteljau) up to
-// kExtensionMaxHalvings times until each part says.
+// kExtensionMaxHalvings deep (kExtensionMaxSplits halvings in all) until each part says.
 bool piece_clear(const OffCurveData& data, int piece, const Clearance& q) {
   const int m = data.extension_degree;
   const double* box = data.extension_boxes.data() + piece * 4;
@@ -531,7 +531,7 @@ bool piece_clear(const OffCurveData& data, int piece, const Clearance& q) {
   const double* scale = data.extension_scale.data() + piece * 4;
   const double slack =
       q.gamma * (scale[0] + std::abs(q.u0) * scale[1] + std::abs(q.v0) * scale[2] + q.c_bound * scale[3]);
-  int waiting = 0;
+  int waiting = 0, splits = 0;
   Interval& first = stack[waiting++];
   first.halvings = 0;
   for (int k = 0; k <= m; ++k)
@@ -543,7 +543,7 @@ bool piece_clear(const OffCurveData& data, int piece, const Clearance& q) {
     bool positive = true;
     for (int k = 0; k <= m && positive; ++k) positive = here.h[k] > slack;
     if (positive) continue;
-    if (here.halvings == kExtensionMaxHalvings) return false;
+    if (here.halvings == kExtensionMaxHalvings || ++splits > kExtensionMaxSplits) return false;
     // The halves in this slot and the next; the slack stays the piece's (de Casteljau's convex
     // combinations do not enlarge the terms).
     const int halvings = here.halvings + 1;
