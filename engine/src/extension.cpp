@@ -114,7 +114,10 @@ std::array<double, kCapsuleStride> control_capsule(Span X, Span W, Span Y, const
     const auto [qy, ey] = y(k);
     const double px = qx - ax, py = qy - ay, along = px * dx + py * dy;
     const double s = !(along > 0) || !(length2 > 0) ? 0.0 : along >= length2 ? 1.0 : along / length2;
-    reach = std::max(reach, std::hypot(px - s * dx, py - s * dy) + std::hypot(ex, ey));
+    // Squares, not hypot (a tenth of the plan's off-curve data went to it): a coordinate large
+    // enough to overflow them makes the reach infinite, and the capsule NaN below.
+    const double fx = px - s * dx, fy = py - s * dy;
+    reach = std::max(reach, std::sqrt(fx * fx + fy * fy) + std::sqrt(ex * ex + ey * ey));
     size = std::max(size, std::abs(qx) + std::abs(qy));
   }
   reach = reach * (1 + 1e-12) + 16 * kEpsilon * size;
