@@ -248,6 +248,11 @@ struct PlanData {
   int isolation_pieces = 0;
   std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique, isolation_groups,
       isolation_far_wide;
+  // Per piece, with one denominator, a capsule that holds it where its box stands off it (a
+  // slanted piece): the chord between its ends and the largest distance of a control point from
+  // it (K x a x, a y, b x, b y, then K reaches; NaN reach for separate denominators, a weight
+  // that is not positive, or K below kIsolationCapsuleMinPieces).
+  std::vector<double> isolation_capsules;
 
   // What only answers off the curve use, built by the first point that asks (off_curve_data).
   Lazy<OffCurveData> off_curve;

@@ -1,6 +1,6 @@
 // engine/src/isolation.cpp: the certificate that lets the fast path skip its second-parameter walks.
 // What it promises is checked directly, against the walks it replaces and against the curve:
-//   - every piece of the curve lies in its box;
+//   - every piece of the curve lies in its box and its capsule;
 //   - around each piece, the curve is as monotone as the stored bound says, and below the stored
 //     distance the distance from a point to the curve has one minimum there;
 //   - where a point is certified, no refinement of the distance (refine_parameter, the walk the
@@ -80,19 +80,41 @@ std::array<double, 2> along_normal(const detail::CurveJet& jet, double off) {
   return {jet.x - off * jet.dy / speed, jet.y + off * jet.dx / speed};
 }
 
-TEST(Isolation, EveryPieceOfTheCurveLiesInItsBox) {
+// The distance from (x, y) to the chord of piece q's capsule, in long double from the stored
+// doubles (NaN where the piece has no capsule).
+long double capsule_chord_distance(const detail::PlanData& plan, int q, long double x, long double y) {
+  const int K = plan.isolation_pieces;
+  const double* c = plan.isolation_capsules.data();  // a x, a y, b x, b y, reach: K each
+  if (std::isnan(c[4 * K + q])) return NAN;
+  const long double dx = static_cast<long double>(c[2 * K + q]) - c[q], dy = static_cast<long double>(c[3 * K + q]) - c[K + q];
+  const long double px = x - c[q], py = y - c[K + q], length2 = dx * dx + dy * dy;
+  const long double s = length2 > 0 ? std::clamp((px * dx + py * dy) / length2, 0.0L, 1.0L) : 0.0L;
+  return std::hypot(px - s * dx, py - s * dy);
+}
+
+TEST(Isolation, EveryPieceOfTheCurveLiesInItsBoxAndItsCapsule) {
   std::mt19937_64 rng(5);
-  int boxes = 0;
+  int boxes = 0, capsules = 0;
   for_each_random_plan(rng, 2, 24, [&](int n, const detail::PlanData& plan) {
       const int K = plan.isolation_pieces;
       ASSERT_EQ(K, detail::isolation_piece_count(n));
       ASSERT_EQ(plan.isolation_boxes.size(), 4u * K);
+      ASSERT_EQ(plan.isolation_capsules.size(), 5u * K);
       for (int j = 0; j < K; ++j) {
         const double* b = plan.isolation_boxes.data();  // x centres, x half-widths, y centres, y half-widths
         const double box[4] = {b[j] - b[K + j], b[j] + b[K + j],  // x min, x max, y min, y max
                                b[2 * K + j] - b[3 * K + j], b[2 * K + j] + b[3 * K + j]};
         for (double side : box) ASSERT_TRUE(std::isfinite(side)) << "positive weights, piece " << j;  // in [0.5, 2]
         ++boxes;
+        const double reach = plan.isolation_capsules[4 * K + j];
+        EXPECT_EQ(std::isnan(reach), !plan.common_denominator || K < detail::kIsolationCapsuleMinPieces)
+            << "n " << n << " piece " << j;
+        capsules += !std::isnan(reach);
+        for (int s = 0; s <= 20 && !std::isnan(reach); ++s) {
+          const double t = (j + s / 20.0) / K;
+          const auto p = plan.normalized_point(t);
+          EXPECT_LE(capsule_chord_distance(plan, j, p[0], p[1]), reach) << "n " << n << " t " << t;
+        }
         for (int s = 0; s <= 20; ++s) {
           const double t = (j + s / 20.0) / K;
           const auto p = plan.normalized_point(t);
@@ -111,15 +133,18 @@ TEST(Isolation, EveryPieceOfTheCurveLiesInItsBox) {
       ASSERT_EQ(plan.isolation_groups.size(), 4u * (K / detail::kIsolationGroup));
   });
   RecordProperty("boxes", boxes);
+  RecordProperty("capsules", capsules);
+  EXPECT_GT(capsules, boxes / 4);
 }
 
 // isolated() looks at the pieces within kIsolationWide of t's only, or at those of the groups near
-// the point: it certifies exactly what the definition does, every box not next to t's farther than the tolerance (after the tests around
+// the point: it certifies exactly what the definition does, every piece not next to t's farther
+// than the tolerance by its box or its capsule (after the tests around
 // t, which both share), on points near the curve, where groups are near, and far from it.
 TEST(Isolation, TheGroupsChangeNothingIsolatedCertifies) {
   std::mt19937_64 rng(41);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  int certified = 0, refused = 0, by_wide = 0;
+  int certified = 0, refused = 0, by_wide = 0, by_capsule = 0;
   for_each_random_plan(rng, 2, 20, [&](int, const detail::PlanData& plan) {
     const int K = plan.isolation_pieces;
     const double* b = plan.isolation_boxes.data();
@@ -137,7 +162,13 @@ TEST(Isolation, TheGroupsChangeNothingIsolatedCertifies) {
         if (q >= j - 1 && q <= j + 1) continue;
         const double dx = std::max(std::abs(u0 - b[q]) - b[K + q], 0.0);
         const double dy = std::max(std::abs(v0 - b[2 * K + q]) - b[3 * K + q], 0.0);
-        expected = dx * dx + dy * dy > limit * limit;
+        // Or the capsule, where the box is not far enough (NaN: none; the slack isolated() keeps
+        // for the rounding, far beyond the long double's).
+        const long double chord = capsule_chord_distance(plan, q, u0, v0);
+        const double reach = plan.isolation_capsules[4 * K + q];
+        expected = dx * dx + dy * dy > limit * limit ||
+                   chord > (reach + limit) * (1 + kIsolationMargin) + 4 * kIsolationMargin * (1 + std::abs(u0) + std::abs(v0));
+        by_capsule += !(dx * dx + dy * dy > limit * limit) && expected;
       }
       const bool got = detail::isolated(plan, u0, v0, t, distance, tolerance);
       EXPECT_EQ(got, expected) << "t " << t << " off " << off << " tolerance " << tolerance;
@@ -150,7 +181,9 @@ TEST(Isolation, TheGroupsChangeNothingIsolatedCertifies) {
   EXPECT_GT(certified, 1000);
   EXPECT_GT(refused, 1000);
   EXPECT_GT(by_wide, 200);
+  EXPECT_GT(by_capsule, 20);
   RecordProperty("by_wide", by_wide);
+  RecordProperty("by_capsule", by_capsule);
   RecordProperty("certified", certified);
   RecordProperty("refused", refused);
 }
