@@ -40,7 +40,8 @@
 // (de Casteljau) a few times per point. Before any piece, a grid over the segment's surroundings
 // (made once a few hundred points of a plan have come this way) clears most points with one comparison: per
 // cell, the least over the pieces of what their box (or parts' boxes) and far radius prove for the
-// whole cell.
+// whole cell, and the list of the few pieces that prove less than kExtensionGridListed of the
+// diagonal, nearest first: a point its cell does not clear tests those alone.
 #include <cstddef>
 
 #include "plan_data.hpp"

@@ -12,7 +12,11 @@
 //     weights each coordinate of a piece is a convex combination of its control values (x = X/Wx
 //     of the x[i] / wx[i], y of its own ratios, with separate denominators too), so the piece lies
 //     in their box. If the box of every piece not next to t's is farther than the tolerance from
-//     P0, no parameter there can end within the tolerance.
+//     P0, no parameter there can end within the tolerance. With one denominator the piece also
+//     lies in the convex hull of its control points, and so in the capsule about the chord
+//     between its ends that reaches them all: where a box is not far enough (it stands off a
+//     slanted piece by up to half its width), the capsule may be (from
+//     kIsolationCapsuleMinPieces pieces on).
 //  2. Around t (its piece and the two next to it, N). With positive weights,
 //         P' = (Hx / Wx^2, Hy / Wy^2) = (Hx, r Hy) / Wx^2,   Hx = X'Wx - XWx',  r = Wx^2 / Wy^2,
 //     and (Hx, r Hy) = sum_k B_k (hx_k, r hy_k) over the Bernstein coefficients of Hx and Hy
@@ -41,7 +45,7 @@
 // Not certified (the roots are refined as before): a weight that is not positive, a piece of N
 // that turns by 45 degrees or more, a point off the curve by more than 3. allows (about a quarter
 // of the radius of curvature, or less), or a box near P0 (a second branch passing close, which is
-// what the check is for).
+// what the check is for) whose capsule is near P0 too.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
