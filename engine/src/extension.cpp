@@ -107,18 +107,15 @@ std::array<double, kCapsuleStride> control_capsule(Span X, Span W, Span Y, const
   const auto x = [&](int k) { return control_coordinate(X, W, Y, W, bounds, k, 0); };
   const auto y = [&](int k) { return control_coordinate(X, W, Y, W, bounds, k, 1); };
   const double ax = x(0).value, ay = y(0).value, bx = x(n).value, by = y(n).value;
-  const double dx = bx - ax, dy = by - ay, length2 = dx * dx + dy * dy;
-  double reach = 0.0, size = std::abs(ax) + std::abs(ay) + std::abs(dx) + std::abs(dy);
+  double reach = 0.0, size = 0.0;
   for (int k = 0; k <= n; ++k) {
     const auto [qx, ex] = x(k);
     const auto [qy, ey] = y(k);
-    const double px = qx - ax, py = qy - ay, along = px * dx + py * dy;
-    const double s = !(along > 0) || !(length2 > 0) ? 0.0 : along >= length2 ? 1.0 : along / length2;
     // Squares, not hypot (a tenth of the plan's off-curve data went to it): a coordinate large
     // enough to overflow them makes the reach infinite, and the capsule NaN below.
-    const double fx = px - s * dx, fy = py - s * dy;
-    reach = std::max(reach, std::sqrt(fx * fx + fy * fy) + std::sqrt(ex * ex + ey * ey));
-    size = std::max(size, std::abs(qx) + std::abs(qy));
+    const auto [distance2, scale] = chord_distance2(ax, ay, bx, by, qx, qy);
+    reach = std::max(reach, std::sqrt(distance2) + std::sqrt(ex * ex + ey * ey));
+    size = std::max(size, scale);
   }
   reach = reach * (1 + 1e-12) + 16 * kEpsilon * size;
   if (!std::isfinite(reach) || !std::isfinite(size)) return {nan, nan, nan, nan, nan};
@@ -126,17 +123,12 @@ std::array<double, kCapsuleStride> control_capsule(Span X, Span W, Span Y, const
 }
 
 // Whether (u0, v0) is farther than `radius` from every point within the capsule's reach of its
-// chord (false for a NaN capsule). The computed projection s is some point of the chord, a few
-// ulps of the coordinates from the nearest (the distance is stationary in s there): the slack
-// on the reach covers that and the rounding of the distance.
+// chord (false for a NaN capsule); the slack on the reach covers chord_distance2's few ulps of
+// the coordinates and the rounding of the comparison.
 bool capsule_clear(const double* c, double u0, double v0, double radius) {
-  const double dx = c[2] - c[0], dy = c[3] - c[1], px = u0 - c[0], py = v0 - c[1];
-  const double length2 = dx * dx + dy * dy, along = px * dx + py * dy;
-  const double s = !(along > 0) || !(length2 > 0) ? 0.0 : along >= length2 ? 1.0 : along / length2;
-  const double ex = px - s * dx, ey = py - s * dy;
-  const double reach =
-      (c[4] + radius) * (1 + 8 * kEpsilon) + 8 * kEpsilon * (std::abs(px) + std::abs(py) + std::abs(dx) + std::abs(dy));
-  return ex * ex + ey * ey > reach * reach;
+  const auto [distance2, scale] = chord_distance2(c[0], c[1], c[2], c[3], u0, v0);
+  const double reach = (c[4] + radius) * (1 + 8 * kEpsilon) + 8 * kEpsilon * scale;
+  return distance2 > reach * reach;
 }
 
 // The square of a radius R about the origin that the piece stays outside: h at P0 = 0 and r = R,

@@ -149,17 +149,12 @@ void piece(PlanData& plan, int j, int K, const CoordinateProducts& products, Pie
   // for their rounding). Separate denominators keep none (isolation_capsules: NaN reach), nor
   // does a plan of fewer than kIsolationCapsuleMinPieces pieces.
   if (plan.common_denominator && K >= kIsolationCapsuleMinPieces) {
-    const double ax = x[0] / wx[0], ay = y[0] / wy[0], dx = x[n] / wx[n] - ax, dy = y[n] / wy[n] - ay;
-    const double length2 = dx * dx + dy * dy;
+    const double ax = x[0] / wx[0], ay = y[0] / wy[0], bx = x[n] / wx[n], by = y[n] / wy[n];
     double reach2 = 0.0;
-    for (int i = 0; i <= n; ++i) {
-      const double px = x[i] / wx[i] - ax, py = y[i] / wy[i] - ay, along = px * dx + py * dy;
-      const double s = !(along > 0) || !(length2 > 0) ? 0.0 : along >= length2 ? 1.0 : along / length2;
-      const double fx = px - s * dx, fy = py - s * dy;
-      reach2 = std::max(reach2, fx * fx + fy * fy);
-    }
+    for (int i = 0; i <= n; ++i)
+      reach2 = std::max(reach2, chord_distance2(ax, ay, bx, by, x[i] / wx[i], y[i] / wy[i]).distance2);
     double* const capsule = plan.isolation_capsules.data();  // a x, a y, b x, b y, reach: K each
-    capsule[j] = ax, capsule[K + j] = ay, capsule[2 * K + j] = ax + dx, capsule[3 * K + j] = ay + dy;
+    capsule[j] = ax, capsule[K + j] = ay, capsule[2 * K + j] = bx, capsule[3 * K + j] = by;
     capsule[4 * K + j] = std::sqrt(reach2) + 2 * margin;
   }
 
@@ -339,13 +334,9 @@ double isolation_limit(double tolerance) { return tolerance * (1 + kIsolationMar
   const int K = plan.isolation_pieces;
   if (K < kIsolationCapsuleMinPieces) return false;  // no capsules
   const double* c = plan.isolation_capsules.data();
-  const double dx = c[2 * K + q] - c[q], dy = c[3 * K + q] - c[K + q], px = u0 - c[q], py = v0 - c[K + q];
-  const double length2 = dx * dx + dy * dy, along = px * dx + py * dy;
-  const double s = !(along > 0) || !(length2 > 0) ? 0.0 : along >= length2 ? 1.0 : along / length2;
-  const double fx = px - s * dx, fy = py - s * dy;
-  const double reach = (c[4 * K + q] + limit) * (1 + kIsolationMargin) +
-                       kIsolationMargin * (std::abs(px) + std::abs(py) + std::abs(dx) + std::abs(dy));
-  return fx * fx + fy * fy > reach * reach;  // false for a NaN reach
+  const auto [distance2, scale] = chord_distance2(c[q], c[K + q], c[2 * K + q], c[3 * K + q], u0, v0);
+  const double reach = (c[4 * K + q] + limit) * (1 + kIsolationMargin) + kIsolationMargin * scale;
+  return distance2 > reach * reach;  // false for a NaN reach
 }
 
 // Around t (in piece j): every stationary point of the distance on N lies within

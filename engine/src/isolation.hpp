@@ -87,6 +87,22 @@ inline double box_distance2(const double* box, double u0, double v0) {
   return dx * dx + dy * dy;
 }
 
+// The squared distance from (u0, v0) to the chord from (ax, ay) to (bx, by), and the scale of the
+// coordinates it came from (|P0 - a| and |b - a| by their components): the computed projection
+// is some point of the chord, within a few ulps of that scale of the nearest (the distance is
+// stationary in it there), so a caller allows that many. The capsules of the isolation pieces
+// and of the extension's.
+struct ChordDistance {
+  double distance2, scale;
+};
+inline ChordDistance chord_distance2(double ax, double ay, double bx, double by, double u0, double v0) {
+  const double dx = bx - ax, dy = by - ay, px = u0 - ax, py = v0 - ay;
+  const double length2 = dx * dx + dy * dy, along = px * dx + py * dy;
+  const double s = !(along > 0) || !(length2 > 0) ? 0.0 : along >= length2 ? 1.0 : along / length2;
+  const double fx = px - s * dx, fy = py - s * dy;
+  return {fx * fx + fy * fy, std::abs(px) + std::abs(py) + std::abs(dx) + std::abs(dy)};
+}
+
 // Fills plan.isolation_boxes, isolation_far, isolation_far_wide, isolation_monotone,
 // isolation_unique and isolation_groups from the normalized curve (make_plan).
 void isolation_pieces(PlanData& plan);
