@@ -17,7 +17,11 @@ An off_curve row whose evidence changed with the route it took (answered now by 
 path nearest without singular values: the off-curve path, engine/src/pipeline/off_curve_path.hpp;
 or now by the SVD path where the base answered it from the fast path's estimates, path bezout_lu)
 is the same answer when its residual is within the bound (t is then the same point, or an equally
-near one, as above): counted as "other evidence".
+near one, as above): counted as "other evidence". So is an ok row of the fast path (path
+bezout_lu) whose second parameter another certificate ruled out: the isolation certificate (no
+sigma_next, sigma_min the seed's estimate; engine/src/isolation.hpp) where the base ran the gap
+pass (sigma_next from the full kernel), or the other way, with the same status and reason and t,
+t2 and the residual within the bound.
 
 An ok row now answered from the inversion formula's start (path formula: no B was formed, so no
 singular values) where the base answered from B's null vector (path bezout_lu, or bezout where the
@@ -82,6 +86,16 @@ def off_curve_nearest(r):
         r.get("reason", "") == "" and math.isnan(r.get("t2", math.nan))
 
 
+def certified_other_way(x, y):
+    """An ok row of the fast path whose second parameter the isolation certificate ruled out in
+    one and the gap pass in the other (sigma_next NaN in one only), the answer within the bound."""
+    def fast(r):
+        return r.get("status") in ("ok", 0) and r.get("path") in ("bezout_lu", 5)
+    return fast(x) and fast(y) and math.isnan(x["sigma_next"]) != math.isnan(y["sigma_next"]) and \
+        x.get("reason", "") == y.get("reason", "") and close("t", x["t"], y["t"]) and \
+        close("t2", x["t2"], y["t2"]) and close("residual", x["residual"], y["residual"])
+
+
 def started(r):
     """An ok row from an algebraic start: B's null vector (paths bezout, bezout_lu) or the formula."""
     return r.get("status") in ("ok", 0) and r.get("path") in ("bezout", "bezout_lu", "formula", 1, 5, 6)
@@ -112,6 +126,9 @@ def main(base, this):
             tied += 1
             continue
         if off_curve_nearest(x) and off_curve_nearest(y) and close("residual", x["residual"], y["residual"]):
+            other_evidence += 1
+            continue
+        if certified_other_way(x, y):
             other_evidence += 1
             continue
         if another_start(x, y):
