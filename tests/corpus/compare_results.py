@@ -17,11 +17,12 @@ An off_curve row whose evidence changed with the route it took (answered now by 
 path nearest without singular values: the off-curve path, engine/src/pipeline/off_curve_path.hpp;
 or now by the SVD path where the base answered it from the fast path's estimates, path bezout_lu)
 is the same answer when its residual is within the bound (t is then the same point, or an equally
-near one, as above): counted as "other evidence". So is an ok row of the fast path (path
-bezout_lu) whose second parameter another certificate ruled out: the isolation certificate (no
+near one, as above): counted as "other evidence". So is an ok row whose second parameter another
+certificate ruled out: the isolation certificate on the fast path (path bezout_lu, no
 sigma_next, sigma_min the seed's estimate; engine/src/isolation.hpp) where the base ran the gap
-pass (sigma_next from the full kernel), or the other way, with the same status and reason and t,
-t2 and the residual within the bound.
+pass (path bezout_lu, sigma_next from the full kernel) or the SVD path (path bezout, the exact
+singular values), or the other way, with the same status and reason and t, t2 and the residual
+within the bound.
 
 An ok row now answered from the inversion formula's start (path formula: no B was formed, so no
 singular values) where the base answered from B's null vector (path bezout_lu, or bezout where the
@@ -87,11 +88,14 @@ def off_curve_nearest(r):
 
 
 def certified_other_way(x, y):
-    """An ok row of the fast path whose second parameter the isolation certificate ruled out in
-    one and the gap pass in the other (sigma_next NaN in one only), the answer within the bound."""
-    def fast(r):
-        return r.get("status") in ("ok", 0) and r.get("path") in ("bezout_lu", 5)
-    return fast(x) and fast(y) and math.isnan(x["sigma_next"]) != math.isnan(y["sigma_next"]) and \
+    """An ok row whose second parameter the isolation certificate ruled out in one (path bezout_lu,
+    no sigma_next) and the gap pass or the SVD path in the other, the answer within the bound."""
+    def by_b(r):
+        return r.get("status") in ("ok", 0) and r.get("path") in ("bezout", "bezout_lu", 1, 5)
+
+    def isolated(r):
+        return r.get("path") in ("bezout_lu", 5) and math.isnan(r["sigma_next"])
+    return by_b(x) and by_b(y) and isolated(x) != isolated(y) and \
         x.get("reason", "") == y.get("reason", "") and close("t", x["t"], y["t"]) and \
         close("t2", x["t2"], y["t2"]) and close("residual", x["residual"], y["residual"])
 
