@@ -211,13 +211,18 @@ void curve_halves(const CurveOnly& curve, int n, CurveOnly& left, CurveOnly& rig
           right.data() + which * kCurveStride);
 }
 
+// Polynomial `which` of a CurveOnly (X, Wx, Y, Wy, then their bounds), degree n.
+Span curve_span(const CurveOnly& curve, int n, std::size_t which) {
+  return Span(curve.data() + which * kCurveStride, static_cast<std::size_t>(n + 1));
+}
+
 std::array<double, 4> curve_box(const CurveOnly& curve, int n) {
-  auto span = [&](std::size_t which) { return Span(curve.data() + which * kCurveStride, static_cast<std::size_t>(n + 1)); };
+  const auto span = [&](std::size_t which) { return curve_span(curve, n, which); };
   return control_box(span(0), span(1), span(2), span(3), {span(4), span(5), span(6), span(7)});
 }
 
 std::array<double, kCapsuleStride> curve_capsule(const CurveOnly& curve, int n, bool common_denominator) {
-  auto span = [&](std::size_t which) { return Span(curve.data() + which * kCurveStride, static_cast<std::size_t>(n + 1)); };
+  const auto span = [&](std::size_t which) { return curve_span(curve, n, which); };
   return control_capsule(span(0), span(1), span(2), {span(4), span(5), span(6), span(7)}, common_denominator);
 }
 
@@ -556,9 +561,10 @@ bool extension_clear(const PlanData& plan, double u0, double v0, double radius, 
   const OffCurveData& data = off_curve_data(plan);
   const int m = data.extension_degree;
   if (m == 0 || !std::isfinite(u0) || !std::isfinite(v0) || !(radius >= 0)) return false;
+  const std::size_t cell = grid ? grid_cell(*grid, u0, v0) : kNoCell;
+  if (cell != kNoCell && radius < grid->clear[cell]) return true;  // most points: nothing more to make
   const Clearance q(m, u0, v0, radius);
-  if (const std::size_t cell = grid ? grid_cell(*grid, u0, v0) : kNoCell; cell != kNoCell) {
-    if (radius < grid->clear[cell]) return true;  // most points
+  if (cell != kNoCell) {
     // The cell's list holds every piece whose bound for the cell is below listed_below, nearest
     // first: those beyond the radius pass their quick tests, the others are tested.
     if (radius < grid->listed_below) {
