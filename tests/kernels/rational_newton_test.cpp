@@ -227,6 +227,68 @@ TEST(RationalNewton, ALaneEndsAsAloneWhateverItsGroup) {
   }
 }
 
+// settings.leave_distance: a lane whose distance at its start is beyond it stops there, its t as it
+// came and its distance +inf, counted in the return; every other lane ends with exactly the bits
+// it has without the setting, whatever the batch (130 lanes: two rounds of 64 and a rest). Points
+// on the curve started within 1e-13 of their t (start distances below ~1e-12, measured exactly),
+// and points 1e-9 to 1e-2 off it (start distances far above the 1e-10 of the setting); starts off
+// [0, 1] come back NaN as always.
+TEST(RationalNewton, LeavesTheLanesOffTheCurveAtTheirStartToTheCaller) {
+  std::mt19937_64 rng(53);
+  std::uniform_real_distribution<double> parameter(0.05, 0.95), angle(0.0, 6.283185307179586);
+  for (int n = 2; n <= 12; n += test_support::kSanitizerThinning) {
+    const TestCurve c = random_curve(n, rng, /*separate=*/n % 4 == 3);
+    Lanes made;
+    std::vector<int> kind;  // 0 on the curve, 1 off it, 2 a start off [0, 1]
+    for (std::size_t l = 0; l < 130; ++l) {
+      const double t_star = parameter(rng);
+      const Exact p = at(c, t_star);
+      if (l % 9 == 4) {
+        made.add(p.x, p.y, 1.25), kind.push_back(2);
+      } else if (l % 3 == 0) {
+        made.add(p.x, p.y, t_star + 1e-13 * (l % 2 ? 1 : -1)), kind.push_back(0);
+      } else {
+        const double off = std::pow(10.0, -9.0 + static_cast<double>(l % 8)), a = angle(rng);
+        made.add(p.x + off * std::cos(a), p.y + off * std::sin(a), t_star), kind.push_back(1);
+      }
+    }
+    for (const Implementation* implementation : available_implementations()) {
+      SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n));
+      Lanes plain = made;
+      Lanes leaving = plain;
+      const std::vector<double> starts = plain.t;
+      const std::size_t none = implementation->rational_newton(c.view(), kSettings, plain.t.size(), plain.u.data(),
+                                                               plain.v.data(), plain.t.data(), plain.distance.data());
+      EXPECT_EQ(none, 0u);
+      NewtonSettings settings = kSettings;
+      settings.leave_distance = 1e-10;
+      const std::size_t left = implementation->rational_newton(c.view(), settings, leaving.t.size(), leaving.u.data(),
+                                                               leaving.v.data(), leaving.t.data(),
+                                                               leaving.distance.data());
+      std::size_t infinite = 0, off_curve = 0;
+      for (std::size_t l = 0; l < kind.size(); ++l) {
+        infinite += leaving.distance[l] == std::numeric_limits<double>::infinity();
+        if (kind[l] == 1) {
+          ++off_curve;
+          EXPECT_EQ(leaving.distance[l], std::numeric_limits<double>::infinity()) << "lane " << l;
+        } else if (kind[l] == 2) {
+          EXPECT_TRUE(std::isnan(leaving.distance[l])) << "lane " << l;
+        } else {
+          EXPECT_TRUE(test_support::same_bits(leaving.distance[l], plain.distance[l])) << "lane " << l;
+          EXPECT_LE(leaving.distance[l], 1e-14) << "lane " << l;
+        }
+        if (kind[l] != 0) {
+          EXPECT_EQ(leaving.t[l], starts[l]) << "lane " << l;  // where it started
+        } else {
+          EXPECT_TRUE(test_support::same_bits(leaving.t[l], plain.t[l])) << "lane " << l;
+        }
+      }
+      EXPECT_EQ(left, infinite);
+      EXPECT_EQ(left, off_curve);
+    }
+  }
+}
+
 // A point past the end t = 1 along the tangent there: the nearest point of the segment is the end
 // itself, and the iteration must stop there exactly (clamped), at distance |delta|.
 TEST(RationalNewton, ClampsAtTheEndsOfTheSegment) {

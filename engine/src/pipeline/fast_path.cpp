@@ -51,63 +51,90 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
   clock.lap(&StageSeconds::refine);
 }
 
+// refine_grouped's lanes off the curve, w's lanes far_of[0..far), by nearest_newton.
+[[gnu::noinline]] void refine_off_curve(const kernels::Implementation& kernel, const PlanData& plan, std::size_t far,
+                                        const std::array<std::uint8_t, kBatchLanes>& far_of, BatchWorkspace& w) {
+  const kernels::RationalCurve curve = kernel_curve(plan);
+  std::array<double, kBatchLanes> u{}, v{}, t{}, distance{};
+  for (std::size_t k = 0; k < far; ++k) {
+    const std::size_t l = far_of[k];
+    u[k] = w.u[l], v[k] = w.v[l], t[k] = w.t_refined[l];
+  }
+  kernel.nearest_newton(kernel_curve(plan, /*horner=*/true), kNearestNewtonSettings, far, u.data(), v.data(), t.data(),
+                        distance.data());
+  // Those that ended at an end, again from their start, compacted.
+  std::size_t ends = 0;
+  std::array<std::uint8_t, kBatchLanes> again_of;
+  for (std::size_t k = 0; k < far; ++k)
+    if (t[k] == 0.0 || t[k] == 1.0) again_of[ends++] = static_cast<std::uint8_t>(k);
+  std::array<double, kBatchLanes> eu, ev, et, ed;
+  for (std::size_t e = 0; e < ends; ++e) {
+    const std::size_t k = again_of[e], l = far_of[k];
+    eu[e] = u[k], ev[e] = v[k], et[e] = w.t_refined[l];
+  }
+  if (ends > 0) kernel.rational_newton(curve, kNewtonSettings, ends, eu.data(), ev.data(), et.data(), ed.data());
+  for (std::size_t e = 0; e < ends; ++e) t[again_of[e]] = et[e], distance[again_of[e]] = ed[e];
+  for (std::size_t k = 0; k < far; ++k) {
+    const std::size_t l = far_of[k];
+    w.t_refined[l] = t[k], w.distance[l] = distance[k];
+  }
+}
+
 // Lane-batched refinement of every lane from t_algebraic (t_refined, distance), in two groups by
 // B's sigma_min estimate (||B z|| / ||B||): the lanes whose seed put them on the curve (at rounding
-// level, or NaN where the formula gave t: no B) by rational_newton, refine.cpp's Newton bit for
-// bit; the others, off the curve (beyond ~1e-12 of it), by nearest_newton, the off-curve path's
-// cheaper kernel, whose t the isolation certificate or the off-curve path's proofs then take.
+// level) by rational_newton, refine.cpp's Newton bit for bit; the others, off the curve (beyond
+// ~1e-12 of it), by nearest_newton, the off-curve path's cheaper kernel, whose t the isolation
+// certificate or the off-curve path's proofs then take.
+// A lane given t by the formula has no B, so no estimate: it starts with the on-curve lanes, and
+// rational_newton leaves it to the others where its first distance, |P(t*) - P0|, is beyond
+// kFormulaOffCurveDistance (normalized units, the diagonal 1 to 4: on the curve ~1e-15, 1e-6 of the
+// diagonal off it at least ~1e-6, wherever the formula's projection put t*). Without that, every
+// formula lane off the curve would take rational_newton's dearer iterations. A plan on the formula
+// path leaves its few lanes seeded by B (the formula undefined there) the same way.
 // Except where that ends at an end of the segment: whether a point by an end is within the
 // tolerance there, or nearer the extension, turns on the distance's last bits, so those lanes are
 // refined again by rational_newton, as the scalar code (and the SVD path) would.
 // Grouping also keeps the Newton kernels' SIMD groups of one kind: a group runs until its slowest
 // lane settles, and a point off the curve takes several steps where a point on it takes one. A
-// lane's group depends on its own estimate alone, so its answer does not depend on its batch. A
-// seed that did not settle has no t and an infinite estimate (the seeds leave its residual
+// lane's group depends on its own estimate or distance alone, so its answer does not depend on its
+// batch. A seed that did not settle has no t and an infinite estimate (the seeds leave its residual
 // uncomputed): it is not in the on-curve lanes' groups, and, like every off-curve lane without a
 // start in [0, 1], it takes no place in nearest_newton's either (off the curve, most lanes).
-void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
+[[gnu::noinline]] void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
+                                     bool formula,
                     BatchWorkspace& w) {
   constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
+  constexpr double kFormulaOffCurveDistance = 1e-10;
   const kernels::RationalCurve curve = kernel_curve(plan);
-  std::array<std::uint8_t, kBatchLanes> lane_of;
-  std::size_t near = 0;
-  for (std::size_t l = 0; l < count; ++l)
-    if (!(w.estimate[l] > kOnCurveEstimate)) lane_of[near++] = static_cast<std::uint8_t>(l);
-  if (near == count) {
-    kernel.rational_newton(curve, kNewtonSettings, count, w.u.data(), w.v.data(), w.t_refined.data(), w.distance.data());
-    return;
+  kernels::NewtonSettings settings = kNewtonSettings;
+  if (formula) settings.leave_distance = kFormulaOffCurveDistance;
+  std::array<std::uint8_t, kBatchLanes> near_of, far_of;
+  std::size_t near = 0, far = 0;
+  for (std::size_t l = 0; l < count; ++l) {
+    if (!(w.estimate[l] > kOnCurveEstimate)) near_of[near++] = static_cast<std::uint8_t>(l);
+    else if (w.t_refined[l] >= 0.0 && w.t_refined[l] <= 1.0) far_of[far++] = static_cast<std::uint8_t>(l);
+    else w.distance[l] = PointResult::nan;  // as nearest_newton would give it back
   }
-  std::size_t far = near;
-  for (std::size_t l = 0; l < count; ++l)
-    if (w.estimate[l] > kOnCurveEstimate) {
-      if (w.t_refined[l] >= 0.0 && w.t_refined[l] <= 1.0) lane_of[far++] = static_cast<std::uint8_t>(l);
-      else w.distance[l] = PointResult::nan;  // as nearest_newton would give it back
+  std::size_t left = 0;
+  if (near == count) {  // the common case on the curve: in place
+    left = kernel.rational_newton(curve, settings, count, w.u.data(), w.v.data(), w.t_refined.data(),
+                                  w.distance.data());
+  } else if (near > 0) {
+    std::array<double, kBatchLanes> u, v, t, distance;
+    for (std::size_t k = 0; k < near; ++k) {
+      const std::size_t l = near_of[k];
+      u[k] = w.u[l], v[k] = w.v[l], t[k] = w.t_refined[l];
     }
-  count = far;
-  std::array<double, kBatchLanes> u, v, t, distance;
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::size_t l = lane_of[k];
-    u[k] = w.u[l], v[k] = w.v[l], t[k] = w.t_refined[l];
+    left = kernel.rational_newton(curve, settings, near, u.data(), v.data(), t.data(), distance.data());
+    for (std::size_t k = 0; k < near; ++k) {
+      const std::size_t l = near_of[k];
+      w.t_refined[l] = t[k], w.distance[l] = distance[k];
+    }
   }
-  kernel.rational_newton(curve, kNewtonSettings, near, u.data(), v.data(), t.data(), distance.data());
-  kernel.nearest_newton(kernel_curve(plan, /*horner=*/true), kNearestNewtonSettings, count - near, u.data() + near,
-                        v.data() + near, t.data() + near, distance.data() + near);
-  // Those that ended at an end, again from their start, compacted.
-  std::size_t ends = 0;
-  std::array<std::uint8_t, kBatchLanes> again_of;
-  for (std::size_t k = near; k < count; ++k)
-    if (t[k] == 0.0 || t[k] == 1.0) again_of[ends++] = static_cast<std::uint8_t>(k);
-  std::array<double, kBatchLanes> eu, ev, et, ed;
-  for (std::size_t e = 0; e < ends; ++e) {
-    const std::size_t k = again_of[e], l = lane_of[k];
-    eu[e] = u[k], ev[e] = v[k], et[e] = w.t_refined[l];
-  }
-  if (ends > 0) kernel.rational_newton(curve, kNewtonSettings, ends, eu.data(), ev.data(), et.data(), ed.data());
-  for (std::size_t e = 0; e < ends; ++e) t[again_of[e]] = et[e], distance[again_of[e]] = ed[e];
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::size_t l = lane_of[k];
-    w.t_refined[l] = t[k], w.distance[l] = distance[k];
-  }
+  if (left > 0)  // the lanes rational_newton left (their t unmoved) join the others
+    for (std::size_t k = 0; k < near; ++k)
+      if (w.distance[near_of[k]] == std::numeric_limits<double>::infinity()) far_of[far++] = near_of[k];
+  if (far > 0) refine_off_curve(kernel, plan, far, far_of, w);
 }
 
 // The lanes the loop of fast_path leaves to the off-curve path go there before it: those the
@@ -189,7 +216,7 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
   // settle(), as it does a lane that ends at an end of the segment off the curve (settle() then
   // also looks along the extension).
   std::copy_n(w.t_algebraic.begin(), count, w.t_refined.begin());
-  refine_grouped(kernel, plan, count, w);
+  refine_grouped(kernel, plan, count, formula, w);
   detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
   if (two_passes) {
     // The common case of pass 1, for the whole batch first: a lane refined onto the segment within

@@ -100,16 +100,35 @@ double formula_parameter(const FormulaPathData& f, double u, double v) {
   return numerator / denominator;
 }
 
+void linear_formula_parameters(const FormulaPathData& f, std::size_t count, const double* u, const double* v,
+                               double* t) {
+  for (std::size_t l = 0; l < count; ++l) {
+    const bool near = std::abs(u[l]) <= kFormulaPathMaxCoordinate && std::abs(v[l]) <= kFormulaPathMaxCoordinate;
+    const double a = (u[l] - f.centre_u) * f.inverse_half_u, b = (v[l] - f.centre_v) * f.inverse_half_v;
+    const double numerator = f.n[0] + f.n[1] * a + f.n[2] * b;
+    const double denominator = f.m[0] + f.m[1] * a + f.m[2] * b;
+    const double size = std::abs(f.m[0]) + std::abs(f.m[1] * a) + std::abs(f.m[2] * b);
+    const bool defined = near && std::abs(denominator) >= kFormulaPathMinDenominator * size;
+    t[l] = defined ? numerator / denominator : PointResult::nan;
+  }
+}
+
 void formula_or_seed(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                      BatchWorkspace& w) {
   const FormulaPathData& f = fast_path_formula(plan);
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
+  std::array<double, kBatchLanes> formula_t;
+  if (f.degree == 1) {
+    linear_formula_parameters(f, count, w.u.data(), w.v.data(), formula_t.data());
+  } else {
+    for (std::size_t l = 0; l < count; ++l) formula_t[l] = w.active[l] ? formula_parameter(f, w.u[l], w.v[l]) : 0.0;
+  }
   std::size_t seeded = 0;
   for (std::size_t l = 0; l < count; ++l) {
     w.from_formula[l] = 0;
     if (!w.active[l]) continue;  // the fast path leaves an inactive lane alone
-    const double t = formula_parameter(f, w.u[l], w.v[l]);
+    const double t = formula_t[l];
     if (std::isfinite(t)) {
       w.t_algebraic[l] = t;
       w.defect[l] = 0.0;

@@ -33,6 +33,12 @@ bool reports_formula_unrefined(const PlanData& plan, const InvertOptions& option
 // point near), or the point farther than kFormulaPathMaxCoordinate.
 double formula_parameter(const FormulaPathData& f, double u, double v);
 
+// formula_parameter of a linear formula (f.degree 1: a conic's or a cubic's) at `count` points at
+// once, t[l] at (u[l], v[l]): the same operations in the same order, so the same bits, without a
+// call or a branch per point (the loop vectorizes).
+void linear_formula_parameters(const FormulaPathData& f, std::size_t count, const double* u, const double* v,
+                               double* t);
+
 // The algebraic step of the fast path for every active lane: t_algebraic, defect and the sigma_min
 // estimate (NaN on formula lanes), from_formula. The seed's lanes have their B formed here; a lane
 // whose B overflows is answered as a far point.

@@ -14,9 +14,9 @@ using NullVectorKernel = void (*)(int n, std::size_t count, std::size_t stride, 
                                   double* defect, double* estimate, double* second);
 using NullVectorSeedKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                                       double* defect, double* residual, double settled_defect);
-using RationalNewtonKernel = void (*)(const RationalCurve& curve, const NewtonSettings& settings,
-                                      std::size_t count, const double* u, const double* v, double* t,
-                                      double* distance);
+using RationalNewtonKernel = std::size_t (*)(const RationalCurve& curve, const NewtonSettings& settings,
+                                             std::size_t count, const double* u, const double* v, double* t,
+                                             double* distance);
 using NearestSampleKernel = void (*)(const double* samples, int last, int stride, std::size_t count,
                                      const double* u, const double* v, double* t);
 using NearestNewtonKernel = void (*)(const RationalCurve& curve, const NearestNewtonSettings& settings,

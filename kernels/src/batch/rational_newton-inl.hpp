@@ -250,8 +250,12 @@ inline constexpr int kNewtonFirstRound = 2;
 // stops; a lane still iterating then gets its t so far in pending (the others NaN), keeps its t
 // as it came, and its distance is the second round's to write. Returns whether there is such a
 // lane. Without, `iterations` is what remains of max_iterations and every lane finishes as above.
-template <class Curve, class D>
+// kLeaving (not in the second round: its lanes have moved): settings.leave_distance applies to the
+// first distance, and the lanes it stops are added to *left_lanes. A template argument, so that
+// the callers without it run the loop they would without the test.
+template <bool kLeaving, class Curve, class D>
 HWY_NOINLINE bool rational_newton_group(D d, const Curve& curve, const NewtonSettings& settings, int iterations,
+                                        std::size_t* left_lanes,
                                         std::size_t first, std::size_t lanes, const double* HWY_RESTRICT u_in,
                                         const double* HWY_RESTRICT v_in, double* HWY_RESTRICT t_inout,
                                         double* HWY_RESTRICT distance_out, double* HWY_RESTRICT pending) {
@@ -304,6 +308,12 @@ HWY_NOINLINE bool rational_newton_group(D d, const Curve& curve, const NewtonSet
     M plain;
     const V h = plain_length(ex, ey, plain);
     give_back(hn::And(active, hn::Not(hn::And(plain, hn::IsFinite(h)))));  // the scalar code stops on inf/NaN
+    if (kLeaving && iteration == 0) {  // off the curve from the start, by the caller's measure: left to it
+      const M left = hn::And(active, hn::Gt(h, hn::Set(d, settings.leave_distance)));
+      result = hn::IfThenElse(left, hn::Set(d, std::numeric_limits<double>::infinity()), result);
+      active = hn::AndNot(left, active);
+      *left_lanes += hn::CountTrue(d, left);
+    }
     dist = hn::IfThenElse(active, h, dist);
     current = hn::Or(current, active);
 
@@ -383,7 +393,7 @@ HWY_NOINLINE bool rational_newton_group(D d, const Curve& curve, const NewtonSet
   }
 
   result = hn::IfThenElse(unsettled, hn::Set(d, std::numeric_limits<double>::quiet_NaN()), result);
-  // A lane left to the scalar code keeps its t.
+  // A lane left to the scalar code keeps its t (a lane left to the caller has not moved).
   hn::StoreGroup(result, d, distance_out, first, lanes);
   hn::StoreGroup(hn::IfThenElse(hn::Or(stopped, hn::IsNaN(result)), t0, t), d, t_inout, first, lanes);
   return !hn::AllFalse(d, stopped);
@@ -402,16 +412,17 @@ inline constexpr int kNewtonWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGE
 // iterates as long as its slowest lane (a batch of points half on the curve, half off, everywhere).
 // Each lane computes exactly what it would in one round (rational_newton_group says why), so the
 // bits are the same.
-template <class Curve, int kWideVectors>
-void rational_newton_groups(const Curve& curve, const NewtonSettings& settings, std::size_t count, const double* u,
-                            const double* v, double* t, double* distance) {
+template <bool kLeaving, class Curve, int kWideVectors>
+std::size_t rational_newton_groups(const Curve& curve, const NewtonSettings& settings, std::size_t count,
+                                   const double* u, const double* v, double* t, double* distance) {
   using Wide = wide::Tag<kWideVectors>;
   constexpr std::size_t LW = wide::MaxLanes(Wide());
+  std::size_t left = 0;
   if (LW == 1 || settings.max_iterations <= kNewtonFirstRound) {  // one lane a group: nothing waits
     for (std::size_t first = 0; first < count; first += LW)
-      rational_newton_group(Wide(), curve, settings, settings.max_iterations, first, std::min(LW, count - first), u, v,
-                            t, distance, nullptr);
-    return;
+      rational_newton_group<kLeaving>(Wide(), curve, settings, settings.max_iterations, &left, first,
+                                      std::min(LW, count - first), u, v, t, distance, nullptr);
+    return left;
   }
   constexpr std::size_t kBatch = 64;
   HWY_ALIGN double pending[kBatch], pu[kBatch], pv[kBatch], pt[kBatch], pd[kBatch];
@@ -420,16 +431,16 @@ void rational_newton_groups(const Curve& curve, const NewtonSettings& settings, 
     const std::size_t lanes = std::min(kBatch, count - start);
     bool any = false;
     for (std::size_t first = 0; first < lanes; first += LW)
-      any |= rational_newton_group(Wide(), curve, settings, settings.max_iterations, first,
-                                   std::min(LW, lanes - first), u + start, v + start, t + start, distance + start,
-                                   pending);
+      any |= rational_newton_group<kLeaving>(Wide(), curve, settings, settings.max_iterations, &left, first,
+                                             std::min(LW, lanes - first), u + start, v + start, t + start,
+                                             distance + start, pending);
     if (!any) continue;
     std::size_t m = 0;
     for (std::size_t l = 0; l < lanes; ++l)
       if (!std::isnan(pending[l])) lane_of[m] = l, pu[m] = u[start + l], pv[m] = v[start + l], pt[m] = pending[l], ++m;
     for (std::size_t first = 0; first < m; first += LW)
-      rational_newton_group(Wide(), curve, settings, settings.max_iterations - kNewtonFirstRound, first,
-                            std::min(LW, m - first), pu, pv, pt, pd, nullptr);
+      rational_newton_group<false>(Wide(), curve, settings, settings.max_iterations - kNewtonFirstRound, &left, first,
+                                   std::min(LW, m - first), pu, pv, pt, pd, nullptr);
     // A lane given back to the scalar code keeps the t it came with (still in t), not the first
     // round's.
     for (std::size_t k = 0; k < m; ++k) {
@@ -438,16 +449,23 @@ void rational_newton_groups(const Curve& curve, const NewtonSettings& settings, 
       if (!std::isnan(pd[k])) t[l] = pt[k];
     }
   }
+  return left;
 }
 
-void rational_newton_batch(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
-                           const double* u, const double* v, double* t, double* distance) {
+std::size_t rational_newton_batch(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
+                                  const double* u, const double* v, double* t, double* distance) {
   for (std::size_t l = 0; l < count; ++l) distance[l] = std::numeric_limits<double>::quiet_NaN();
+  const bool leaving = settings.leave_distance < std::numeric_limits<double>::infinity();
+  std::size_t left = 0;
   dispatch_size<kRationalNewtonMinDegree, kRationalNewtonMaxDegree>("rational_newton", curve.degree, [&](auto size) {
     constexpr int N = decltype(size)::value;
-    rational_newton_groups<CasteljauCurve<N>, kNewtonWideVectors<N>>(CasteljauCurve<N>{curve}, settings, count, u, v,
-                                                                   t, distance);
+    const CasteljauCurve<N> casteljau{curve};
+    left = leaving ? rational_newton_groups<true, CasteljauCurve<N>, kNewtonWideVectors<N>>(casteljau, settings, count,
+                                                                                           u, v, t, distance)
+                   : rational_newton_groups<false, CasteljauCurve<N>, kNewtonWideVectors<N>>(casteljau, settings, count,
+                                                                                            u, v, t, distance);
   });
+  return left;
 }
 
 // P and P' by Horner's rule (HornerCurve::slope), lane by lane as the engine's curve_slope_horner.

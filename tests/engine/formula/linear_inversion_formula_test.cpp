@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -92,6 +93,48 @@ TEST(LinearInversionFormula, GivesTheParameterOfAPointMadeFromIt) {
           }
         }
   EXPECT_GT(checked, 700);
+}
+
+// The fast path's batch of the formula gives formula_parameter's bits at every point: on the
+// curve, off it, by the pencil's centre (M = 0: NaN), beyond kFormulaPathMaxCoordinate, and NaN
+// and infinite coordinates.
+TEST(LinearInversionFormula, ABatchOfPointsGetsFormulaParametersBits) {
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> parameter(0.0, 1.0), spread(-4.0, 4.0);
+  int defined = 0, undefined = 0;
+  for (int n = 2; n <= 3; ++n)
+    for (int c = 0; c < 8; ++c) {
+      const Curve curve = datasets::random_curve(CurveKind::rational_bezier, n, rng,
+                                                 datasets::ControlPolygon::perturbed_arc);
+      const auto plan = make_plan(curve);
+      const detail::PlanData& data = detail::plan_data(plan);
+      const detail::FormulaPathData& f = data.low_degree_formula;
+      ASSERT_TRUE(f.usable);
+      const test_support::ExactCurve exact(curve);
+      std::vector<double> u, v;
+      for (int k = 0; k < 61; ++k) {
+        const Point on = test_support::known_at(exact, parameter(rng)).point;
+        const auto uv = data.normalize(on.x, on.y);
+        u.push_back(uv[0] + (k % 3 == 0 ? 0.0 : 1e-3 * spread(rng)));
+        v.push_back(uv[1] + (k % 3 == 0 ? 0.0 : 1e-3 * spread(rng)));
+        u.push_back(spread(rng));
+        v.push_back(spread(rng));
+      }
+      const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+      const double big = 2 * kFormulaPathMaxCoordinate;
+      for (const std::array<double, 2> odd : {std::array<double, 2>{f.centre_u, f.centre_v}, {big, 0.0}, {0.0, -big},
+                                              {nan, 0.0}, {0.0, inf}, {-inf, inf}})
+        u.push_back(odd[0]), v.push_back(odd[1]);
+      std::vector<double> t(u.size(), -7.0);
+      detail::linear_formula_parameters(f, u.size(), u.data(), v.data(), t.data());
+      for (std::size_t l = 0; l < u.size(); ++l) {
+        const double want = detail::formula_parameter(f, u[l], v[l]);
+        EXPECT_TRUE(std::isnan(want) ? std::isnan(t[l]) : t[l] == want) << "point " << l << ": " << t[l] << " " << want;
+        ++(std::isnan(want) ? undefined : defined);
+      }
+    }
+  EXPECT_GT(defined, 1500);
+  EXPECT_GE(undefined, 16 * 5);  // the odd points but the centre, at least
 }
 
 // The general construction (sampled conditions, SVDs, its own frame) reaches the same formula: a

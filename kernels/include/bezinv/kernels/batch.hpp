@@ -13,6 +13,7 @@
 //     component r of the null vector       z[r * stride + l]
 // so that one SIMD load fetches the same entry of consecutive matrices.
 #include <cstddef>
+#include <limits>
 #include <span>
 #include <string_view>
 
@@ -70,6 +71,9 @@ struct NewtonSettings {
   double trusted_step;  // steps up to this are taken without the descent test
   int max_halvings;     // of a larger step, looking for descent
   double final_step;    // a step up to this, where f' >= |P'|^2 / 2, is the last (see rational_newton)
+  // A lane whose distance at its start exceeds this is off the curve for the caller's purpose:
+  // it stops there (see rational_newton). Infinite: no lane stops.
+  double leave_distance = std::numeric_limits<double>::infinity();
 };
 
 // The safeguards of nearest_newton (the engine passes its tolerances.hpp values).
@@ -158,10 +162,14 @@ struct Implementation {
   // |P - P0 + P' s| of the distance before it; else measured before the last step where that
   // moved t by a few ulps). A lane the kernel does not settle (start not in [0, 1], or a distance that is not
   // finite or that the scalar code would compute with std::hypot) keeps its t and gets
-  // distance[l] = NaN: the caller runs the scalar code for it. Arrays have `count` entries;
+  // distance[l] = NaN: the caller runs the scalar code for it. A lane whose distance at its start
+  // exceeds settings.leave_distance keeps its t and gets distance[l] = +inf: a caller that cannot
+  // tell the points on the curve from those off it before (no estimate) takes the latter to a
+  // cheaper kernel, at the cost of one comparison. Every other lane is unaffected. Returns the
+  // number of lanes left so (0 without a finite leave_distance). Arrays have `count` entries;
   // curve.degree in [kRationalNewtonMinDegree, kRationalNewtonMaxDegree].
-  void (*rational_newton)(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
-                          const double* u, const double* v, double* t, double* distance);
+  std::size_t (*rational_newton)(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
+                                 const double* u, const double* v, double* t, double* distance);
 
   // Starts for nearest_newton: per lane, the nearest to (u[l], v[l]) of every `stride`-th sample
   // k = 0, stride, 2 stride, ... <= last of a curve (samples: x, y of sample k at 2k, 2k + 1; the
