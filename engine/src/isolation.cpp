@@ -314,6 +314,72 @@ void isolation_pieces(PlanData& plan) {
       plan.isolation_groups[4 * g + k] = box[k] + outward;
     }
   }
+  segment_far_grid(plan);
+}
+
+void segment_far_grid(PlanData& plan) {
+  plan.segment_far_near.clear();
+  const int K = plan.isolation_pieces;
+  if (plan.degree < kSegmentFarMinDegree || K == 0) return;
+  const double* const x_centre = plan.isolation_boxes.data();
+  const double* const x_half = x_centre + K;
+  const double* const y_centre = x_centre + 2 * K;
+  const double* const y_half = x_centre + 3 * K;
+  const double* const capsule = plan.isolation_capsules.data();  // a x, a y, b x, b y, reach: K each
+  // The grid's extent: the pieces' boxes, widened by the reach and a cell either way (a point
+  // outside it is never called far).
+  double lo_x = std::numeric_limits<double>::infinity(), hi_x = -lo_x, lo_y = lo_x, hi_y = -lo_x;
+  for (int j = 0; j < K; ++j) {
+    lo_x = std::min(lo_x, x_centre[j] - x_half[j]), hi_x = std::max(hi_x, x_centre[j] + x_half[j]);
+    lo_y = std::min(lo_y, y_centre[j] - y_half[j]), hi_y = std::max(hi_y, y_centre[j] + y_half[j]);
+  }
+  if (!std::isfinite(lo_x + hi_x + lo_y + hi_y)) return;  // a piece without a box (or a NaN)
+  const double reach = kSegmentFarDistance * plan.normalized_diagonal;
+  const double cell_u = (hi_x - lo_x + 2 * reach) / (kSegmentFarGrid - 2);
+  const double cell_v = (hi_y - lo_y + 2 * reach) / (kSegmentFarGrid - 2);
+  if (!(cell_u > 0 && cell_v > 0 && reach > 0)) return;
+  plan.segment_far_reach = reach;
+  plan.segment_far_u = lo_x - reach - cell_u;
+  plan.segment_far_v = lo_y - reach - cell_v;
+  plan.segment_far_inverse_cell_u = 1.0 / cell_u;
+  plan.segment_far_inverse_cell_v = 1.0 / cell_v;
+  plan.segment_far_near.assign(kSegmentFarGrid * kSegmentFarGrid / 64, 0);
+  // A point's cell is computed in doubles: at an edge it may be the neighbour's. Each cell is
+  // taken as its square widened by `slack` (far more than that rounding).
+  const double slack = 1e-9 * (1.0 + std::max({std::abs(lo_x), std::abs(hi_x), std::abs(lo_y), std::abs(hi_y)}));
+  const double half_diagonal = 0.5 * std::hypot(cell_u, cell_v) + slack;
+  auto cells = [](double lo, double hi, double origin, double inverse_cell) {
+    const double first = std::floor((lo - origin) * inverse_cell), last = std::floor((hi - origin) * inverse_cell);
+    return std::array<int, 2>{static_cast<int>(std::max(0.0, first)),
+                              static_cast<int>(std::min(kSegmentFarGrid - 1.0, last))};
+  };
+  auto mark = [&](int gu, int gv) {
+    const std::size_t bit = segment_far_bit(static_cast<std::size_t>(gu), static_cast<std::size_t>(gv));
+    plan.segment_far_near[bit / 64] |= std::uint64_t{1} << (bit % 64);
+  };
+  for (int j = 0; j < K; ++j) {
+    const double capsule_reach = capsule[4 * K + j];
+    // The cells that meet the box widened by the reach (and the slack)...
+    const double grow = reach + slack;
+    const auto iu = cells(x_centre[j] - x_half[j] - grow, x_centre[j] + x_half[j] + grow, plan.segment_far_u,
+                          plan.segment_far_inverse_cell_u);
+    const auto iv = cells(y_centre[j] - y_half[j] - grow, y_centre[j] + y_half[j] + grow, plan.segment_far_v,
+                          plan.segment_far_inverse_cell_v);
+    for (int gv = iv[0]; gv <= iv[1]; ++gv)
+      for (int gu = iu[0]; gu <= iu[1]; ++gu) {
+        // ... and, where the piece has a capsule, whose centre is within the capsule's reach, the
+        // grid's and the cell's half diagonal of its chord (the box of a slanted piece holds many
+        // cells its capsule does not come near).
+        if (capsule_reach >= 0) {
+          const double cu = plan.segment_far_u + (gu + 0.5) * cell_u, cv = plan.segment_far_v + (gv + 0.5) * cell_v;
+          const double limit = capsule_reach + reach + half_diagonal;
+          if (chord_distance2(capsule[j], capsule[K + j], capsule[2 * K + j], capsule[3 * K + j], cu, cv).distance2 >
+              limit * limit)
+            continue;
+        }
+        mark(gu, gv);
+      }
+  }
 }
 
 namespace {

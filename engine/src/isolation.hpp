@@ -107,6 +107,31 @@ inline ChordDistance chord_distance2(double ax, double ay, double bx, double by,
 // isolation_unique and isolation_groups from the normalized curve (make_plan).
 void isolation_pieces(PlanData& plan);
 
+// Whether (u0, v0) is farther than plan.segment_far_reach (kSegmentFarDistance of the normalized
+// diagonal) from every point of the segment, by its cell of plan.segment_far_near: a cell whose
+// bit is clear is that far from every piece's capsule (or box, where it has none), and each piece
+// lies in both. False outside the grid, for a NaN, and where the plan has no grid. The fast path
+// does not seed such a point from B (docs/fast-path.md, "Far from the segment, no seed").
+inline constexpr int kSegmentFarGrid = 512;
+inline constexpr int kSegmentFarMinDegree = 15;
+inline constexpr double kSegmentFarDistance = 3e-4;
+// make_plan's grid (isolation_pieces calls it, after the pieces' boxes and capsules).
+void segment_far_grid(PlanData& plan);
+// The bit of cell (gu, gv) in plan.segment_far_near: tiles of 8 x 8 cells, a word each, row by
+// row of tiles, so that the cells along a curve share cache lines (a row of cells a word would
+// spread a curve's cells over kSegmentFarGrid lines).
+inline std::size_t segment_far_bit(std::size_t gu, std::size_t gv) {
+  return ((gv / 8) * (kSegmentFarGrid / 8) + gu / 8) * 64 + (gv % 8) * 8 + gu % 8;
+}
+inline bool segment_far(const PlanData& plan, double u0, double v0) {
+  if (plan.segment_far_near.empty()) return false;
+  const double gu = (u0 - plan.segment_far_u) * plan.segment_far_inverse_cell_u;
+  const double gv = (v0 - plan.segment_far_v) * plan.segment_far_inverse_cell_v;
+  if (!(gu >= 0 && gu < kSegmentFarGrid && gv >= 0 && gv < kSegmentFarGrid)) return false;
+  const std::size_t bit = segment_far_bit(static_cast<std::size_t>(gu), static_cast<std::size_t>(gv));
+  return !((plan.segment_far_near[bit / 64] >> (bit % 64)) & 1u);
+}
+
 // True when no parameter distinct from t (by more than kDistinctParameterGap) can be where a
 // refinement of the distance to (u0, v0) ends within `tolerance`; `distance` is |P(t) - (u0, v0)|,
 // all in normalized units. False whenever the certificate does not apply.

@@ -248,6 +248,14 @@ struct PlanData {
   int isolation_pieces = 0;
   std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique, isolation_groups,
       isolation_far_wide;
+  // Cells far from the segment (isolation.hpp, segment_far): over the pieces' boxes, a
+  // kSegmentFarGrid x kSegmentFarGrid grid of bits, set for a cell that comes within
+  // segment_far_reach of some piece's capsule or box (cell (i, j) from
+  // segment_far_u + i / segment_far_inverse_cell_u, likewise in v; its bit segment_far_bit). Empty below
+  // kSegmentFarMinDegree, or where a piece has no box (a weight that is not positive).
+  double segment_far_u = 0.0, segment_far_v = 0.0, segment_far_inverse_cell_u = 0.0,
+         segment_far_inverse_cell_v = 0.0, segment_far_reach = 0.0;
+  std::vector<std::uint64_t> segment_far_near;
   // Per piece, with one denominator, a capsule that holds it where its box stands off it (a
   // slanted piece): the chord between its ends and the largest distance of a control point from
   // it (K x a x, a y, b x, b y, then K reaches; NaN reach for separate denominators, a weight

@@ -137,6 +137,47 @@ TEST(Isolation, EveryPieceOfTheCurveLiesInItsBoxAndItsCapsule) {
   EXPECT_GT(capsules, boxes / 4);
 }
 
+// segment_far is a certificate: a point it calls far is farther than plan.segment_far_reach from
+// every point of the segment. Checked against 6,000 points of each curve (their spacing, at most
+// ~1e-3 of the diagonal, is far below the distances of the points it clears: a cell marked far by
+// mistake within the reach would show), on points up to 1e-2 of the diagonal off the curve and on
+// it (never far); and it must clear most of those beyond a few reaches, or the fast path gains
+// nothing by it.
+TEST(Isolation, ThePointsSegmentFarClearsAreFartherThanItsReachFromTheSegment) {
+  std::mt19937_64 rng(77);
+  int cleared = 0, beyond = 0, cleared_beyond = 0, checked = 0;
+  for_each_random_plan(rng, detail::kSegmentFarMinDegree, 22, [&](int n, const detail::PlanData& plan) {
+    ASSERT_FALSE(plan.segment_far_near.empty()) << "n " << n;  // positive weights: every piece has a box
+    constexpr int kSamples = 6000;
+    std::vector<std::array<double, 2>> samples;
+    for (int k = 0; k <= kSamples; ++k) samples.push_back(plan.normalized_point(k / double(kSamples)));
+    std::uniform_real_distribution<double> parameter(0.0, 1.0), angle(0.0, 6.283185307179586), radius(0.0, 1.0);
+    const double reach = plan.segment_far_reach;
+    EXPECT_EQ(reach, detail::kSegmentFarDistance * plan.normalized_diagonal);
+    for (int k = 0; k < 300 / test_support::kSanitizerThinning; ++k) {
+      const auto on = plan.normalized_point(parameter(rng));
+      EXPECT_FALSE(detail::segment_far(plan, on[0], on[1])) << "n " << n;
+      const double r = 1e-2 * plan.normalized_diagonal * radius(rng), a = angle(rng);
+      const double u = on[0] + r * std::cos(a), v = on[1] + r * std::sin(a);
+      double nearest2 = std::numeric_limits<double>::infinity();
+      for (const auto& p : samples) nearest2 = std::min(nearest2, (p[0] - u) * (p[0] - u) + (p[1] - v) * (p[1] - v));
+      const bool far = detail::segment_far(plan, u, v);
+      ++checked;
+      cleared += far;
+      if (far) {
+        EXPECT_GT(std::sqrt(nearest2), reach) << "n " << n << " at " << u << ", " << v;
+      }
+      beyond += std::sqrt(nearest2) > 8 * reach;
+      cleared_beyond += far && std::sqrt(nearest2) > 8 * reach;
+    }
+  });
+  RecordProperty("checked", checked);
+  RecordProperty("cleared", cleared);
+  RecordProperty("beyond", beyond);
+  RecordProperty("cleared_beyond", cleared_beyond);
+  EXPECT_GT(cleared_beyond, beyond * 3 / 4);  // most of those beyond 8 reaches
+}
+
 // isolated() looks at the pieces within kIsolationWide of t's only, or at those of the groups near
 // the point: it certifies exactly what the definition does, every piece not next to t's farther
 // than the tolerance by its box or its capsule (after the tests around

@@ -51,6 +51,63 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
   clock.lap(&StageSeconds::refine);
 }
 
+// The seed of B's null vector formed in registers (bezout_null_vector_seed), for the lanes that
+// may use it: a lane far from the segment (segment_far: beyond kSegmentFarDistance of every point
+// of it, by plan.segment_far_near) gets what a seed that did not settle gives, defect and residual
+// +inf, without it. At the degrees with that grid, such a seed does not settle (B's two smallest
+// singular values are not apart), and the lanes of a SIMD group run together: at noise 1e-2 the
+// seed was 46% of the time at degree 20 and answered nothing. The lane then goes where an
+// unsettled one goes, to the off-curve path from its samples, so its answer depends on its own
+// point alone. Not where the tolerance reaches a quarter of that distance (a point within it
+// is better seeded).
+void formed_seed(const PlanData& plan, std::size_t count, double tolerance, BatchWorkspace& w,
+                 std::array<double, kBatchLanes>& poison) {
+  const int n = plan.degree;
+  const std::size_t stride = kBatchLanes;
+  const kernels::Implementation& kernel = kernels::active_implementation();
+  std::array<std::uint8_t, kBatchLanes> seeded_of;
+  std::size_t seeded = 0;
+  if (!plan.segment_far_near.empty() && tolerance <= 0.25 * plan.segment_far_reach) {
+    std::array<std::uint8_t, kBatchLanes> far;
+    std::uint8_t any_far = 0;
+    for (std::size_t l = 0; l < count; ++l) far[l] = segment_far(plan, w.u[l], w.v[l]), any_far |= far[l];
+    if (any_far) {
+      for (std::size_t l = 0; l < count; ++l)
+        if (!far[l]) seeded_of[seeded++] = static_cast<std::uint8_t>(l);
+    } else {
+      seeded = count;
+    }
+  } else {
+    seeded = count;
+  }
+  if (seeded == count) {
+    kernel.bezout_null_vector_seed(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
+                                   bilinear_coefficients(plan), w.u.data(), w.v.data(), w.z.data(), w.defect.data(),
+                                   w.estimate.data(), poison.data(), kFastPathMaxDefect);
+    return;
+  }
+  std::array<double, kBatchLanes> u, v, seeded_poison;
+  for (std::size_t k = 0; k < seeded; ++k) u[k] = w.u[seeded_of[k]], v[k] = w.v[seeded_of[k]];
+  if (seeded > 0)
+    kernel.bezout_null_vector_seed(n, seeded, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
+                                   bilinear_coefficients(plan), u.data(), v.data(), w.gap_z.data(),
+                                   w.gap_defect.data(), w.gap_estimate.data(), seeded_poison.data(),
+                                   kFastPathMaxDefect);
+  const double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t l = 0; l < count; ++l) {
+    w.defect[l] = w.estimate[l] = inf;
+    poison[l] = 0.0;
+    for (int r = 0; r < n; ++r) w.z[r * stride + l] = 1.0;  // read out, then not used (defect)
+  }
+  for (std::size_t k = 0; k < seeded; ++k) {
+    const std::size_t l = seeded_of[k];
+    for (int r = 0; r < n; ++r) w.z[r * stride + l] = w.gap_z[r * stride + k];
+    w.defect[l] = w.gap_defect[k];
+    w.estimate[l] = w.gap_estimate[k];
+    poison[l] = seeded_poison[k];
+  }
+}
+
 // refine_grouped's lanes off the curve, w's lanes far_of[0..far), by nearest_newton.
 [[gnu::noinline]] void refine_off_curve(const kernels::Implementation& kernel, const PlanData& plan, std::size_t far,
                                         const std::array<std::uint8_t, kBatchLanes>& far_of, BatchWorkspace& w) {
@@ -189,9 +246,7 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
     clock.lap(&StageSeconds::kernel);
   } else if (formed_b) {
     std::array<double, kBatchLanes> poison;
-    kernel.bezout_null_vector_seed(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
-                                   bilinear_coefficients(plan), w.u.data(), w.v.data(), w.z.data(), w.defect.data(),
-                                   w.estimate.data(), poison.data(), kFastPathMaxDefect);
+    formed_seed(plan, count, tolerance, w, poison);
     mark_overflowing_b(plan, points, poison.data(), count, w, results);
   } else if (two_passes) {
     kernel.null_vector_seed(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),
