@@ -113,7 +113,8 @@ void isolation_pieces(PlanData& plan);
 // lies in both. False outside the grid, for a NaN, and where the plan has no grid. The fast path
 // does not seed such a point from B (docs/fast-path.md, "Far from the segment, no seed").
 inline constexpr int kSegmentFarGrid = 512;
-inline constexpr int kSegmentFarMinDegree = 15;
+inline constexpr int kSegmentFarMinDegree = 15;  // where the seed is dearest (below, the grid's cache
+                                                  // lines cost points near the curve more than it saves)
 inline constexpr double kSegmentFarDistance = 3e-4;
 // make_plan's grid (isolation_pieces calls it, after the pieces' boxes and capsules).
 void segment_far_grid(PlanData& plan);

@@ -54,8 +54,8 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
 // The seed of B's null vector formed in registers (bezout_null_vector_seed), for the lanes that
 // may use it: a lane far from the segment (segment_far: beyond kSegmentFarDistance of every point
 // of it, by plan.segment_far_near) gets what a seed that did not settle gives, defect and residual
-// +inf, without it. At the degrees with that grid, such a seed does not settle (B's two smallest
-// singular values are not apart), and the lanes of a SIMD group run together: at noise 1e-2 the
+// +inf, without it. So far off the curve a seed seldom settles (B's two smallest singular values
+// are not apart), and where it does it only gives the off-curve path a start: at noise 1e-2 the
 // seed was 46% of the time at degree 20 and answered nothing. The lane then goes where an
 // unsettled one goes, to the off-curve path from its samples, so its answer depends on its own
 // point alone. Not where the tolerance reaches a quarter of that distance (a point within it
@@ -144,7 +144,7 @@ void formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
 // certificate or the off-curve path's proofs then take.
 // A lane given t by the formula has no B, so no estimate: it starts with the on-curve lanes, and
 // rational_newton leaves it to the others where its first distance, |P(t*) - P0|, is beyond
-// kFormulaOffCurveDistance (normalized units, the diagonal 1 to 4: on the curve ~1e-15, 1e-6 of the
+// kFormulaOffCurveDistance (normalized units, the diagonal of order 1: on the curve ~1e-15, 1e-6 of the
 // diagonal off it at least ~1e-6, wherever the formula's projection put t*). Without that, every
 // formula lane off the curve would take rational_newton's dearer iterations. A plan on the formula
 // path leaves its few lanes seeded by B (the formula undefined there) the same way.
