@@ -158,8 +158,7 @@ void formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
 // uncomputed): it is not in the on-curve lanes' groups, and, like every off-curve lane without a
 // start in [0, 1], it takes no place in nearest_newton's either (off the curve, most lanes).
 [[gnu::noinline]] void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
-                                     bool formula,
-                    BatchWorkspace& w) {
+                                      bool formula, BatchWorkspace& w) {
   constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
   constexpr double kFormulaOffCurveDistance = 1e-10;
   const kernels::RationalCurve curve = kernel_curve(plan);

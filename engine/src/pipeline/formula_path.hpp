@@ -35,7 +35,7 @@ double formula_parameter(const FormulaPathData& f, double u, double v);
 
 // formula_parameter of a linear formula (f.degree 1: a conic's or a cubic's) at `count` points at
 // once, t[l] at (u[l], v[l]): the same operations in the same order, so the same bits, without a
-// call or a branch per point (the loop vectorizes).
+// call or a branch per point (the fast path's batches on conics and cubics).
 void linear_formula_parameters(const FormulaPathData& f, std::size_t count, const double* u, const double* v,
                                double* t);
 
