@@ -68,19 +68,12 @@ void formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
   std::array<std::uint8_t, kBatchLanes> seeded_of;
   std::size_t seeded = 0;
   if (!plan.segment_far_near.empty() && tolerance <= 0.25 * plan.segment_far_reach) {
-    std::array<std::uint8_t, kBatchLanes> far;
-    std::uint8_t any_far = 0;
-    for (std::size_t l = 0; l < count; ++l) far[l] = segment_far(plan, w.u[l], w.v[l]), any_far |= far[l];
-    if (any_far) {
-      for (std::size_t l = 0; l < count; ++l)
-        if (!far[l]) seeded_of[seeded++] = static_cast<std::uint8_t>(l);
-    } else {
-      seeded = count;
-    }
+    for (std::size_t l = 0; l < count; ++l)
+      if (!segment_far(plan, w.u[l], w.v[l])) seeded_of[seeded++] = static_cast<std::uint8_t>(l);
   } else {
     seeded = count;
   }
-  if (seeded == count) {
+  if (seeded == count) {  // every lane (the common case near the curve): in place
     kernel.bezout_null_vector_seed(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                    bilinear_coefficients(plan), w.u.data(), w.v.data(), w.z.data(), w.defect.data(),
                                    w.estimate.data(), poison.data(), kFastPathMaxDefect);
@@ -93,18 +86,16 @@ void formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
                                    bilinear_coefficients(plan), u.data(), v.data(), w.gap_z.data(),
                                    w.gap_defect.data(), w.gap_estimate.data(), seeded_poison.data(),
                                    kFastPathMaxDefect);
+  // Lane l is seeded lane k where seeded_of[k] == l (in order); the others get an unsettled
+  // seed's numbers (z is read out, then not used: its defect).
   const double inf = std::numeric_limits<double>::infinity();
-  for (std::size_t l = 0; l < count; ++l) {
-    w.defect[l] = w.estimate[l] = inf;
-    poison[l] = 0.0;
-    for (int r = 0; r < n; ++r) w.z[r * stride + l] = 1.0;  // read out, then not used (defect)
-  }
-  for (std::size_t k = 0; k < seeded; ++k) {
-    const std::size_t l = seeded_of[k];
-    for (int r = 0; r < n; ++r) w.z[r * stride + l] = w.gap_z[r * stride + k];
-    w.defect[l] = w.gap_defect[k];
-    w.estimate[l] = w.gap_estimate[k];
-    poison[l] = seeded_poison[k];
+  for (std::size_t l = 0, k = 0; l < count; ++l) {
+    const bool from_seed = k < seeded && seeded_of[k] == l;
+    for (int r = 0; r < n; ++r) w.z[r * stride + l] = from_seed ? w.gap_z[r * stride + k] : 1.0;
+    w.defect[l] = from_seed ? w.gap_defect[k] : inf;
+    w.estimate[l] = from_seed ? w.gap_estimate[k] : inf;
+    poison[l] = from_seed ? seeded_poison[k] : 0.0;
+    k += from_seed;
   }
 }
 

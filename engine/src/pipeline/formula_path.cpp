@@ -69,33 +69,32 @@ bool forms_b_late(const PlanData& plan, const InvertOptions& options) {
 }
 
 double formula_parameter(const FormulaPathData& f, double u, double v) {
+  if (f.degree == 1) {  // degrees 3 (and 2): linear over linear, as the fast path's batches have it
+    double t;
+    linear_formula_parameters(f, 1, &u, &v, &t);
+    return t;
+  }
   if (!(std::abs(u) <= kFormulaPathMaxCoordinate && std::abs(v) <= kFormulaPathMaxCoordinate))
     return PointResult::nan;
   const double a = (u - f.centre_u) * f.inverse_half_u, b = (v - f.centre_v) * f.inverse_half_v;
-  double numerator = 0.0, denominator = 0.0, size = 0.0;
-  if (f.degree == 1) {  // degrees 3 (and 2): linear over linear
-    numerator = f.n[0] + f.n[1] * a + f.n[2] * b;
-    denominator = f.m[0] + f.m[1] * a + f.m[2] * b;
-    size = std::abs(f.m[0]) + std::abs(f.m[1] * a) + std::abs(f.m[2] * b);
-  } else {
-    // sum_{i + j <= d} c_ij T_i(a) T_j(b), in PlanePolynomial::index order.
-    std::array<double, kMaxDegree + 1> ta, tb;
-    ta[0] = tb[0] = 1.0;
-    ta[1] = a;
-    tb[1] = b;
-    for (int k = 1; k < f.degree; ++k) {
-      ta[k + 1] = 2.0 * a * ta[k] - ta[k - 1];
-      tb[k + 1] = 2.0 * b * tb[k] - tb[k - 1];
-    }
-    std::size_t e = 0;
-    for (int k = 0; k <= f.degree; ++k)
-      for (int j = 0; j <= k; ++j, ++e) {
-        const double term = ta[k - j] * tb[j];
-        numerator += f.n[e] * term;
-        denominator += f.m[e] * term;
-        size += std::abs(f.m[e] * term);
-      }
+  // sum_{i + j <= d} c_ij T_i(a) T_j(b), in PlanePolynomial::index order.
+  std::array<double, kMaxDegree + 1> ta, tb;
+  ta[0] = tb[0] = 1.0;
+  ta[1] = a;
+  tb[1] = b;
+  for (int k = 1; k < f.degree; ++k) {
+    ta[k + 1] = 2.0 * a * ta[k] - ta[k - 1];
+    tb[k + 1] = 2.0 * b * tb[k] - tb[k - 1];
   }
+  double numerator = 0.0, denominator = 0.0, size = 0.0;
+  std::size_t e = 0;
+  for (int k = 0; k <= f.degree; ++k)
+    for (int j = 0; j <= k; ++j, ++e) {
+      const double term = ta[k - j] * tb[j];
+      numerator += f.n[e] * term;
+      denominator += f.m[e] * term;
+      size += std::abs(f.m[e] * term);
+    }
   if (!(std::abs(denominator) >= kFormulaPathMinDenominator * size)) return PointResult::nan;
   return numerator / denominator;
 }

@@ -34,8 +34,8 @@ bool reports_formula_unrefined(const PlanData& plan, const InvertOptions& option
 double formula_parameter(const FormulaPathData& f, double u, double v);
 
 // formula_parameter of a linear formula (f.degree 1: a conic's or a cubic's) at `count` points at
-// once, t[l] at (u[l], v[l]): the same operations in the same order, so the same bits, without a
-// call or a branch per point (the fast path's batches on conics and cubics).
+// once, t[l] at (u[l], v[l]), without a call or a branch per point (the fast path's batches on
+// conics and cubics; formula_parameter calls it for one point).
 void linear_formula_parameters(const FormulaPathData& f, std::size_t count, const double* u, const double* v,
                                double* t);
 
