@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -466,6 +467,66 @@ TEST(BatchNullVector, SeedWithoutPivoting) {
   RecordProperty("least_regular_residual", sci(least_regular_residual));
   std::printf("[ measured ] seed: worst 1 - |cos(z, null vector)| %.3g, worst residual error %.3g, least regular "
               "residual %.3g over %zu lanes\n", worst_cos, worst_residual_error, least_regular_residual, lanes);
+}
+
+// null_vector_iterations: three solves give null_vector's bits; where sigma_n / sigma_{n-1} = 0.1
+// (B = Q diag(sigma) Q^T, sigma_{n-1} = 1e-3, sigma_n = 1e-4, the others in [0.1, 1]) three
+// leave z unsettled (defect above the engine's 1e-3) in most lanes and six settle it onto the
+// constructed singular vector in every lane; fewer than three are refused. The singular vector of sigma_n has positive
+// components, as a Bernstein basis vector has: the start (1, ..., 1) is then well inside its
+// basin (a random one may be nearly orthogonal to it, and take more solves).
+TEST(BatchNullVector, MoreIterationsSettleASlowlyConvergingLane) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(0.1, 1.0);
+  std::size_t lanes = 0, unsettled_by_three = 0;
+  double worst_defect_of_six = 0, worst_cos = 0;
+  for (int n : {3, 5, 8, 12, 16, 20, 24, 32}) {
+    constexpr std::size_t kCount = 17;
+    std::vector<Dense> matrices, q;
+    for (std::size_t l = 0; l < kCount; ++l) {
+      // Q's last column along a positive vector: Householder QR of a matrix whose first column it is.
+      Dense a(n, n);
+      for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) a(r, c) = c == 0 ? u(rng) : 2 * u(rng) - 1.1;
+      const Dense h = Eigen::HouseholderQR<Dense>(a).householderQ();
+      q.emplace_back(n, n);
+      q.back() << h.rightCols(n - 1), h.col(0);
+      Eigen::VectorXd sigma(n);
+      for (int k = 0; k < n; ++k) sigma(k) = (k < n - 2 ? u(rng) : k == n - 2 ? 1e-3 : 1e-4) * (rng() % 2 ? 1.0 : -1.0);
+      const Dense b = q.back() * sigma.asDiagonal() * q.back().transpose();
+      matrices.push_back((0.5 * (b + b.transpose())).eval());
+    }
+    for (const Implementation* impl : available_implementations()) {
+      SCOPED_TRACE(label(*impl, n, kCount));
+      std::mt19937_64 junk(n);
+      Batch three(matrices, junk), plain(matrices, junk), six(matrices, junk);
+      impl->null_vector(n, kCount, plain.stride, plain.B.data(), plain.z.data(), plain.defect.data(),
+                        plain.estimate.data(), plain.second.data());
+      impl->null_vector_iterations(n, 3, kCount, three.stride, three.B.data(), three.z.data(), three.defect.data(),
+                                   three.estimate.data(), three.second.data());
+      EXPECT_TRUE(test_support::same_bits(three.z, plain.z) && test_support::same_bits(three.defect, plain.defect) &&
+                  test_support::same_bits(three.estimate, plain.estimate) &&
+                  test_support::same_bits(three.second, plain.second));
+      impl->null_vector_iterations(n, 6, kCount, six.stride, six.B.data(), six.z.data(), six.defect.data(),
+                                   six.estimate.data(), six.second.data());
+      for (std::size_t l = 0; l < kCount; ++l) {
+        ++lanes;
+        unsettled_by_three += three.defect[l] > 1e-3;
+        EXPECT_LE(six.defect[l], 1e-3) << "lane " << l;
+        const double cos = abs_cos(six.null(l), q[l].col(n - 1));
+        EXPECT_GE(cos, 1 - 1e-8) << "lane " << l;
+        worst_defect_of_six = std::max(worst_defect_of_six, six.defect[l]);
+        worst_cos = std::max(worst_cos, 1 - cos);
+      }
+      EXPECT_THROW(impl->null_vector_iterations(n, 2, kCount, six.stride, six.B.data(), six.z.data(),
+                                                six.defect.data(), six.estimate.data(), six.second.data()),
+                   std::invalid_argument);
+    }
+  }
+  std::printf("[ measured ] sigma_n / sigma_{n-1} = 0.1: %zu of %zu lanes unsettled by three solves; after six the "
+              "defect at most %.3g, 1 - |cos(z, singular vector)| at most %.3g\n",
+              unsettled_by_three, lanes, worst_defect_of_six, worst_cos);
+  EXPECT_GT(unsettled_by_three, lanes / 2);  // the case more solves are for
 }
 
 // The smallest singular vector of a nearly singular matrix with sigma_{n-1} / sigma_1 = 1e-6,

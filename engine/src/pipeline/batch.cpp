@@ -7,6 +7,7 @@
 #include "pipeline/form_b.hpp"
 #include "pipeline/formula_path.hpp"
 #include "pipeline/pair_check.hpp"
+#include "pipeline/seed_retry.hpp"
 #include "pipeline/stage_clock.hpp"
 #include "pipeline/svd_path.hpp"
 #include "pipeline/svd_queue.hpp"
@@ -38,9 +39,15 @@ void invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
 
   // The SVD path for the lanes still undecided, compacted to the front of the batch (in order, so
   // moving lane lane_of[k] >= k down to k never overwrites a lane still to be moved).
+  // A lane whose seed fell short waits for the seed retry instead (seed_retry.hpp).
+  const bool retries = fast && n >= 3;
   std::size_t m = 0;
   for (std::size_t l = 0; l < count; ++l) {
     if (!w.active[l]) continue;
+    if (retries && retries_seed(w, l)) {
+      seed_retry_queue().push(w.u[l], w.v[l], &results[l]);
+      continue;
+    }
     if (m != l) {
       if (!formed_b)
         for (int i = 0; i < nn; ++i) w.B[i * stride + m] = w.B[i * stride + l];
@@ -77,6 +84,7 @@ void invert_batch(const PlanData& plan, const Point* points, PointResult* result
   PairCheckQueue& pairs = pair_check_queue();
   if (pairs.lanes + count > kPairCheckLanes) flush_pair_check_queue(plan, options, stages);
   invert_batch_lanes(plan, points, results, count, options, stages);
+  if (seed_retry_queue().size >= kSeedRetryFlushLanes) flush_seed_retry_queue(plan, options, stages);
   if (pairs.near + pairs.far >= kPairCheckFlushRoots) {
     flush_pair_check_queue(plan, options, stages);
     if (svd_queue().size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);
@@ -85,11 +93,13 @@ void invert_batch(const PlanData& plan, const Point* points, PointResult* result
 
 
 void flush_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages) {
+  flush_seed_retry_queue(plan, options, stages);
   flush_pair_check_queue(plan, options, stages);
   flush_svd_queue(plan, options, stages);
 }
 
 QueueScope::~QueueScope() {
+  seed_retry_queue().size = 0;
   svd_queue().size = 0;
   PairCheckQueue& pairs = pair_check_queue();
   pairs.lanes = pairs.near = pairs.far = 0;

@@ -17,21 +17,18 @@
 #include "refine.hpp"
 
 namespace bezinv::detail {
-namespace {
 
-// Pass 2, the gap pass: the full kernel for the `waiting` lanes w.gap_lane_of[0..waiting), compacted,
-// its results put back in their lanes, then decide_with_gap with the refined point they kept.
-void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, BatchWorkspace& w,
-              PointResult* results, StageClock& clock) {
+void full_kernel(const PlanData& plan, std::size_t waiting, BatchWorkspace& w, int iterations) {
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
   {
-    std::array<double, kBatchLanes> u, v;
+    std::array<double, kBatchLanes> u{}, v{};
     for (std::size_t k = 0; k < waiting; ++k) u[k] = w.u[w.gap_lane_of[k]], v[k] = w.v[w.gap_lane_of[k]];
     form_compacted_b(plan, u.data(), v.data(), waiting, w.gap_B.data());
   }
-  kernels::active_implementation().null_vector(n, waiting, stride, w.gap_B.data(), w.gap_z.data(),
-                                               w.gap_defect.data(), w.gap_estimate.data(), w.gap_second.data());
+  kernels::active_implementation().null_vector_iterations(n, iterations, waiting, stride, w.gap_B.data(),
+                                                          w.gap_z.data(), w.gap_defect.data(), w.gap_estimate.data(),
+                                                          w.gap_second.data());
   for (std::size_t k = 0; k < waiting; ++k) {
     const std::size_t l = w.gap_lane_of[k];
     for (int r = 0; r < n; ++r) {
@@ -42,11 +39,19 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
     w.estimate[l] = w.gap_estimate[k];
     w.estimate[stride + l] = w.gap_estimate[stride + k];
   }
+}
+
+namespace {
+
+// Pass 2, the gap pass: the full kernel for the `waiting` lanes w.gap_lane_of[0..waiting), then
+// decide_with_gap with the refined point they kept.
+void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, BatchWorkspace& w,
+              PointResult* results, StageClock& clock) {
+  full_kernel(plan, waiting, w, kFullKernelIterations);
   clock.lap(&StageSeconds::kernel);
   for (std::size_t k = 0; k < waiting; ++k) {
     const std::size_t l = w.gap_lane_of[k];
-    if (w.defect[l] <= kFastPathMaxDefect && w.estimate[stride + l] >= kFastPathMinGap)
-      decide_with_gap(plan, w, l, w.main[l], tolerance, true, results[l]);
+    if (gap_decides(w, l)) decide_with_gap(plan, w, l, w.main[l], tolerance, true, results[l]);
   }
   clock.lap(&StageSeconds::refine);
 }

@@ -44,6 +44,7 @@ struct Table {
     for (std::size_t i = 0; i < kCandidates.size(); ++i) {
       const auto svd = batch::symmetric_svd_kernel(kCandidates[i].target);
       const auto null = batch::null_vector_kernel(kCandidates[i].target);
+      const auto null_iterations = batch::null_vector_iterations_kernel(kCandidates[i].target);
       const auto null_seed = batch::null_vector_seed_kernel(kCandidates[i].target);
       const auto newton = batch::rational_newton_kernel(kCandidates[i].target);
       const auto sample = batch::nearest_sample_kernel(kCandidates[i].target);
@@ -53,14 +54,14 @@ struct Table {
       const auto bezout = batch::bezout_matrix_kernel(kCandidates[i].target);
       const auto bezout_seed = batch::bezout_null_vector_seed_kernel(kCandidates[i].target);
       const auto space_check = batch::space_check_kernel(kCandidates[i].target);
-      if (svd == nullptr || null == nullptr || null_seed == nullptr || newton == nullptr || sample == nullptr || nearest == nullptr ||
-          slope == nullptr ||
-          parameter == nullptr || bezout == nullptr || bezout_seed == nullptr || space_check == nullptr ||
+      if (svd == nullptr || null == nullptr || null_iterations == nullptr || null_seed == nullptr || newton == nullptr ||
+          sample == nullptr || nearest == nullptr || slope == nullptr || parameter == nullptr || bezout == nullptr ||
+          bezout_seed == nullptr || space_check == nullptr ||
           (supported & kCandidates[i].target) == 0)
         continue;
       storage[count] =
-          Implementation{kCandidates[i].name, svd, null, null_seed, newton, sample, nearest, slope, parameter, bezout, bezout_seed,
-                         space_check};
+          Implementation{kCandidates[i].name, svd,   null,      null_iterations, null_seed,  newton, sample,
+                         nearest,             slope, parameter, bezout,          bezout_seed, space_check};
       available[count] = &storage[count];
       ++count;
     }

@@ -12,6 +12,9 @@ using SymmetricSvdKernel = void (*)(int n, std::size_t count, std::size_t stride
                                     double* V);
 using NullVectorKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                                   double* defect, double* estimate, double* second);
+using NullVectorIterationsKernel = void (*)(int n, int iterations, std::size_t count, std::size_t stride,
+                                            const double* B, double* z, double* defect, double* estimate,
+                                            double* second);
 using NullVectorSeedKernel = void (*)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                                       double* defect, double* residual, double settled_defect);
 using RationalNewtonKernel = std::size_t (*)(const RationalCurve& curve, const NewtonSettings& settings,
@@ -38,6 +41,7 @@ using SpaceCheckKernel = void (*)(const SpaceCurve& curve, std::size_t count, co
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);
 NullVectorKernel null_vector_kernel(std::int64_t target);
+NullVectorIterationsKernel null_vector_iterations_kernel(std::int64_t target);
 NullVectorSeedKernel null_vector_seed_kernel(std::int64_t target);
 RationalNewtonKernel rational_newton_kernel(std::int64_t target);
 NearestSampleKernel nearest_sample_kernel(std::int64_t target);

@@ -73,6 +73,9 @@ HWY_INLINE wide::Vec<D> residual_norm(D d, const Matrix& matrix, const double* H
 // Rank n-1 with sigma_{n-1} >= 1e-4 ||B||: both ~1e-12 or less. Capped at 1. Whether B is singular
 // at all is the residual's to say (||B z|| / ||B||_F, reported apart): a point near the curve but
 // off it has a slightly regular B whose z is as good a seed as a null vector.
+// `iterations` (kGap only): the solves from (1, ..., 1), batch::kInverseIterations unless a caller
+// asks for more (null_vector_iterations: where sigma_n / sigma_{n-1} is ~0.1, three leave z
+// unsettled).
 // kGap false (the seeds): z from L D L^T without pivoting (Ldlt), measure 1 alone, and no
 // deflated iterations, no sigma_{n-1} estimate, no second vector.
 // The seeds (kGap false) compute the residual only for the lanes whose defect is at most
@@ -88,7 +91,8 @@ HWY_NOINLINE bool null_vector_group(D d, std::size_t stride, std::size_t first, 
                                     const Source& source, double* HWY_RESTRICT z,
                                     double* HWY_RESTRICT defect, double* HWY_RESTRICT estimate,
                                     double* HWY_RESTRICT second, double settled_defect = 1.0,
-                                    double* HWY_RESTRICT deferred_scale = nullptr) {
+                                    double* HWY_RESTRICT deferred_scale = nullptr,
+                                    int iterations = batch::kInverseIterations) {
   static_assert(N >= 2, "n = 1 has no sigma_{n-1}, and no seed needs it");
   constexpr std::size_t L = hn::MaxLanes(D());
   const auto one = hn::Set(d, 1.0);
@@ -144,13 +148,13 @@ HWY_NOINLINE bool null_vector_group(D d, std::size_t stride, std::size_t first, 
   auto unsettled = hn::Zero(d);
   // The settling measure: the chord between the last two iterates (the larger of the last two
   // chords where there are three solves).
-  constexpr int kIterations = kGap ? batch::kInverseIterations : batch::kSeedInverseIterations;
-  constexpr int kMeasured = kIterations >= 3 ? 2 : 1;
-  for (int iteration = 0; iteration < kIterations; ++iteration) {
-    if (iteration + kMeasured >= kIterations) copy<N>(d, x, previous);  // for the chord below
+  const int solves = kGap ? iterations : batch::kSeedInverseIterations;
+  const int measured = solves >= 3 ? 2 : 1;
+  for (int iteration = 0; iteration < solves; ++iteration) {
+    if (iteration + measured >= solves) copy<N>(d, x, previous);  // for the chord below
     solve<N>(d, lu, x);
     normalize<N>(d, x);
-    if (iteration + kMeasured >= kIterations) unsettled = hn::Max(unsettled, chord<N>(d, previous, x));
+    if (iteration + measured >= solves) unsettled = hn::Max(unsettled, chord<N>(d, previous, x));
   }
 
   auto result = unsettled;
@@ -239,14 +243,15 @@ inline constexpr int kWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == H
 // themselves, matrix_source-inl.hpp.)
 template <int N, bool kGap, class Source>
 void null_vector_fixed(std::size_t count, std::size_t stride, const Source& B, double* z, double* defect,
-                       double* estimate, double* second, double settled_defect = 1.0) {
+                       double* estimate, double* second, double settled_defect = 1.0,
+                       int iterations = batch::kInverseIterations) {
   using Wide = wide::Tag<kWideVectors<N>>;
   constexpr std::size_t LW = wide::MaxLanes(Wide());
   constexpr bool kPastTheRows = !GroupMatrix<Source, Wide>::kFormed;
   std::size_t first = 0;
   for (; first < count && (!kPastTheRows || first + LW <= stride); first += LW)
     null_vector_group<N, kGap>(Wide(), stride, first, std::min(LW, count - first), B, z, defect, estimate, second,
-                               settled_defect);
+                               settled_defect, nullptr, iterations);
   if constexpr (kPastTheRows) {
     if (first >= count) return;
     const std::size_t lanes = count - first;
@@ -255,7 +260,7 @@ void null_vector_fixed(std::size_t count, std::size_t stride, const Source& B, d
     for (std::size_t i = 0; i < N * N; ++i) std::copy_n(B.B + i * stride + first, lanes, padded.data() + i * LW);
     null_vector_group<N, kGap>(Wide(), LW, 0, lanes, StoredMatrices{padded.data()}, z_lanes.data(),
                                defect_lanes.data(), estimate ? estimate_lanes.data() : nullptr,
-                               second ? second_lanes.data() : nullptr, settled_defect);
+                               second ? second_lanes.data() : nullptr, settled_defect, nullptr, iterations);
     for (std::size_t l = 0; l < lanes; ++l) {
       defect[first + l] = defect_lanes[l];
       if (estimate) {

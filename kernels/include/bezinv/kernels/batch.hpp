@@ -131,6 +131,13 @@ struct Implementation {
   void (*null_vector)(int n, std::size_t count, std::size_t stride, const double* B, double* z,
                       double* defect, double* estimate, double* second);
 
+  // null_vector with `iterations` solves from (1, ..., 1) instead of its three (iterations >= 3,
+  // else std::invalid_argument; 3 gives null_vector's bits). Inverse iteration damps the other
+  // directions by sigma_n / sigma_{n-1} per solve: where that is ~0.1 (a point near, not on, a
+  // curve whose B has a small sigma_{n-1}), three solves leave z unsettled and a few more settle it.
+  void (*null_vector_iterations)(int n, int iterations, std::size_t count, std::size_t stride, const double* B,
+                                 double* z, double* defect, double* estimate, double* second);
+
   // A cheaper null vector, for a seed: inverse iteration from (1, ..., 1), but two solves instead
   // of three, with B = L D L^T factored without pivoting (n^3 / 6 multiply-adds, no per-lane row
   // swaps) and without the iterations orthogonal to z (no sigma_{n-1} estimate, no second
