@@ -65,7 +65,10 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
 // unsettled one goes, to the off-curve path from its samples, so its answer depends on its own
 // point alone. Not where the tolerance reaches a quarter of that distance (a point within it
 // is better seeded).
-void formed_seed(const PlanData& plan, std::size_t count, double tolerance, BatchWorkspace& w,
+// Returns whether it read t out too (w.t_algebraic, every lane): where it seeded some lanes only,
+// the seeded lanes' t is read from their compacted z, and no z goes back to w.z (nothing after the
+// read-out uses a seed's z: the pair check's comes from the full kernel).
+bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, BatchWorkspace& w,
                  std::array<double, kBatchLanes>& poison) {
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
@@ -82,7 +85,7 @@ void formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
     kernel.bezout_null_vector_seed(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                    bilinear_coefficients(plan), w.u.data(), w.v.data(), w.z.data(), w.defect.data(),
                                    w.estimate.data(), poison.data(), kFastPathMaxDefect);
-    return;
+    return false;
   }
   std::array<double, kBatchLanes> u, v, seeded_poison;
   for (std::size_t k = 0; k < seeded; ++k) u[k] = w.u[seeded_of[k]], v[k] = w.v[seeded_of[k]];
@@ -91,17 +94,20 @@ void formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
                                    bilinear_coefficients(plan), u.data(), v.data(), w.gap_z.data(),
                                    w.gap_defect.data(), w.gap_estimate.data(), seeded_poison.data(),
                                    kFastPathMaxDefect);
+  std::array<double, kBatchLanes> t;
+  if (seeded > 0) kernel.bernstein_parameter(n, seeded, stride, w.gap_z.data(), t.data());
   // Lane l is seeded lane k where seeded_of[k] == l (in order); the others get an unsettled
-  // seed's numbers (z is read out, then not used: its defect).
+  // seed's numbers (no t: its defect).
   const double inf = std::numeric_limits<double>::infinity();
   for (std::size_t l = 0, k = 0; l < count; ++l) {
     const bool from_seed = k < seeded && seeded_of[k] == l;
-    for (int r = 0; r < n; ++r) w.z[r * stride + l] = from_seed ? w.gap_z[r * stride + k] : 1.0;
+    w.t_algebraic[l] = from_seed ? t[k] : PointResult::nan;
     w.defect[l] = from_seed ? w.gap_defect[k] : inf;
     w.estimate[l] = from_seed ? w.gap_estimate[k] : inf;
     poison[l] = from_seed ? seeded_poison[k] : 0.0;
     k += from_seed;
   }
+  return true;
 }
 
 // refine_grouped's lanes off the curve, w's lanes far_of[0..far), by nearest_newton.
@@ -236,12 +242,13 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
   // certificate, then the gap pass for the lanes it leaves.
   const bool two_passes = n >= 3 || formula;
   std::fill_n(w.off_curve_tried.begin(), count, std::uint8_t{0});
+  bool read_out = true;  // t still to be read from w.z
   if (formula) {
     formula_or_seed(plan, points, results, count, w);
     clock.lap(&StageSeconds::kernel);
   } else if (formed_b) {
     std::array<double, kBatchLanes> poison;
-    formed_seed(plan, count, tolerance, w, poison);
+    read_out = !formed_seed(plan, count, tolerance, w, poison);
     mark_overflowing_b(plan, points, poison.data(), count, w, results);
   } else if (two_passes) {
     kernel.null_vector_seed(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),
@@ -252,7 +259,7 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
   }
   if (!formula) {
     clock.lap(&StageSeconds::kernel);
-    kernel.bernstein_parameter(n, count, stride, w.z.data(), w.t_algebraic.data());
+    if (read_out) kernel.bernstein_parameter(n, count, stride, w.z.data(), w.t_algebraic.data());
   }
   // Where the formula gave t, the lane's path says so.
   auto path_of = [&](std::size_t l) { return formula && w.from_formula[l] ? Path::formula : Path::bezout_lu; };
