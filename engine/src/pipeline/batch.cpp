@@ -17,7 +17,8 @@ namespace bezinv::detail {
 namespace {
 
 // One batch through the stages, but for the lanes left waiting in this thread's queues.
-void invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+// Returns whether it left lanes in the seed retry's queue.
+bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                         const InvertOptions& options, StageSeconds* stages) {
   BatchWorkspace& w = batch_workspace();
   const int n = plan.degree, nn = n * n;
@@ -41,11 +42,13 @@ void invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
   // moving lane lane_of[k] >= k down to k never overwrites a lane still to be moved).
   // A lane whose seed fell short waits for the seed retry instead (seed_retry.hpp).
   const bool retries = fast && n >= 3;
+  bool retried = false;
   std::size_t m = 0;
   for (std::size_t l = 0; l < count; ++l) {
     if (!w.active[l]) continue;
     if (retries && retries_seed(w, l)) {
       seed_retry_queue().push(w.u[l], w.v[l], &results[l]);
+      retried = true;
       continue;
     }
     if (m != l) {
@@ -60,18 +63,19 @@ void invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
 
   if (m == 0) {
     clock.lap(&StageSeconds::decide);  // the routing above is the decide stage's
-    return;
+    return retried;
   }
   SvdQueue& queue = svd_queue();
   if (m >= kSvdGroupLanes || queue.size + m > kBatchLanes) {  // enough for a group: here and now
     std::array<PointResult*, kBatchLanes> target;
     for (std::size_t k = 0; k < m; ++k) target[k] = &results[w.lane_of[k]];
     svd_path(plan, w.B.data(), w.u.data(), w.v.data(), target.data(), m, options, w, clock);
-    return;
+    return retried;
   }
   for (std::size_t k = 0; k < m; ++k) queue.push(nn, w.B.data(), k, w.u[k], w.v[k], &results[w.lane_of[k]]);
   clock.lap(&StageSeconds::decide);
   if (queue.size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);
+  return retried;
 }
 
 }  // namespace
@@ -83,8 +87,9 @@ void invert_batch(const PlanData& plan, const Point* points, PointResult* result
                   const InvertOptions& options, StageSeconds* stages) {
   PairCheckQueue& pairs = pair_check_queue();
   if (pairs.lanes + count > kPairCheckLanes) flush_pair_check_queue(plan, options, stages);
-  invert_batch_lanes(plan, points, results, count, options, stages);
-  if (seed_retry_queue().size >= kSeedRetryFlushLanes) flush_seed_retry_queue(plan, options, stages);
+  if (invert_batch_lanes(plan, points, results, count, options, stages) &&
+      seed_retry_queue().size >= kSeedRetryFlushLanes)
+    flush_seed_retry_queue(plan, options, stages);
   if (pairs.near + pairs.far >= kPairCheckFlushRoots) {
     flush_pair_check_queue(plan, options, stages);
     if (svd_queue().size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);

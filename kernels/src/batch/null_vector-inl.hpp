@@ -149,20 +149,26 @@ HWY_NOINLINE bool null_vector_group(D d, std::size_t stride, std::size_t first, 
 
   // Inverse iteration from (1, ..., 1) / sqrt(n).
   HWY_ALIGN double x[N * L];
-  HWY_ALIGN double previous[N * L];
+  HWY_ALIGN double previous[N * L] = {};  // written before it is read; {} for the compiler's sake
   for (int i = 0; i < N; ++i) hn::Store(one, d, x + i * L);
   normalize<N>(d, x);
   auto unsettled = hn::Zero(d);
   // The settling measure: the chord between the last two iterates (the larger of the last two
   // chords where there are three solves).
-  const int solves = kGap ? iterations : batch::kSeedInverseIterations;
-  const int measured = solves >= 3 ? 2 : 1;
-  for (int iteration = 0; iteration < solves; ++iteration) {
-    if (iteration + measured >= solves) copy<N>(d, x, previous);  // for the chord below
-    solve<N>(d, lu, x);
-    normalize<N>(d, x);
-    if (iteration + measured >= solves) unsettled = hn::Max(unsettled, chord<N>(d, previous, x));
-  }
+  // The usual count as a constant, so that the loop unrolls at small n (a run-time count there cost
+  // the conics 2%); more solves only where asked for.
+  auto iterate = [&](int solves) HWY_ATTR __attribute__((always_inline)) {
+    const int measured = solves >= 3 ? 2 : 1;
+    for (int iteration = 0; iteration < solves; ++iteration) {
+      if (iteration + measured >= solves) copy<N>(d, x, previous);  // for the chord below
+      solve<N>(d, lu, x);
+      normalize<N>(d, x);
+      if (iteration + measured >= solves) unsettled = hn::Max(unsettled, chord<N>(d, previous, x));
+    }
+  };
+  constexpr int kSolves = kGap ? batch::kInverseIterations : batch::kSeedInverseIterations;
+  if (kGap && iterations != kSolves) iterate(iterations);
+  else iterate(kSolves);
 
   auto result = unsettled;
   auto next = hn::Zero(d);  // 1 / growth (kGap)
