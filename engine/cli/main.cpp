@@ -354,6 +354,8 @@ int main(int argc, char** argv) {
   profile->add_option("--noise", profile_options.noise, "Move points off the curve by up to D x its diagonal")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  profile->add_flag("--mixed", profile_options.mixed,
+                    "With --noise: leave every other point on the curve (batches holding both kinds)");
   bool profile_no_refine = false;
   profile->add_flag("--no-refine", profile_no_refine, "Algebraic t only (no Newton refinement)");
   bool profile_svd_only = false;

@@ -55,6 +55,7 @@ Workload generate(const ProfileOptions& options) {
       t[i] = datasets::uniform(rng, 0.0, 1.0);
       angle[i] = datasets::uniform(rng, 0.0, 2 * std::numbers::pi);
       offset[i] = options.noise * datasets::uniform(rng, 0.0, 1.0) * w.plans.back().diagonal();
+      if (options.mixed && i % 2 == 0) offset[i] = 0.0;  // drawn all the same: the off ones stay as without
       // A direction uniform on the sphere (space curves only: the plane workload's random numbers
       // stay as they were, so its figures compare across versions).
       if (options.dimension == 3) polar[i] = std::acos(datasets::uniform(rng, -1.0, 1.0));
@@ -153,19 +154,21 @@ int run_profile(const ProfileOptions& options) {
   if (options.json) {
     std::printf(
         "{\"points_per_second\": %.6g, \"degree\": %d, \"dimension\": %d, \"threads\": %d, \"kernel\": \"%.*s\", \"kind\": \"%s\", "
-        "\"points\": %zu, \"curves\": %zu, \"noise\": %g, \"refine\": %s, \"seconds\": %.6g, "
+        "\"points\": %zu, \"curves\": %zu, \"noise\": %g, \"mixed\": %s, \"refine\": %s, \"seconds\": %.6g, "
         "\"stages_points_per_second\": {\"form_b\": %.6g, \"kernel\": %.6g, \"read_out\": %.6g, \"refine\": %.6g, "
         "\"off_curve\": %.6g, \"decide\": %.6g, \"space\": %.6g}, \"ok\": %zu, \"fast_path\": %zu, \"certified\": %zu, "
         "\"off_curve_path\": %zu, \"projection\": %zu, \"max_abs_dt_ok\": %.3g}\n",
         pps, options.degree, options.dimension, threads, static_cast<int>(kernel.size()), kernel.data(), to_string(options.kind), total,
-        w.plans.size(), options.noise, options.refine ? "true" : "false", wall, rate(stages.form_b),
+        w.plans.size(), options.noise, options.mixed ? "true" : "false", options.refine ? "true" : "false", wall,
+        rate(stages.form_b),
         rate(stages.kernel), rate(stages.read_out), rate(stages.refine), rate(stages.off_curve), rate(stages.decide),
         rate(stages.space), ok, fast, certified, by_distance, projected, max_dt);
     return 0;
   }
-  std::printf("bezinv profile: %zu points on %zu %s %s curves of degree %d, noise %g, refine %s, threads %d, kernel %.*s\n\n",
+  std::printf("bezinv profile: %zu points on %zu %s %s curves of degree %d, noise %g%s, refine %s, threads %d, kernel %.*s\n\n",
               total, w.plans.size(), space ? "space" : "plane", to_string(options.kind), options.degree, options.noise,
-              options.refine ? "on" : "off", threads, static_cast<int>(kernel.size()), kernel.data());
+              options.mixed ? " (every other point on the curve)" : "", options.refine ? "on" : "off", threads,
+              static_cast<int>(kernel.size()), kernel.data());
   std::printf("%-34s %14s %10s\n", "stage", "points/s", "share");
   const double work =
       stages.form_b + stages.kernel + stages.read_out + stages.refine + stages.off_curve + stages.decide + stages.space;

@@ -15,6 +15,7 @@ struct ProfileOptions {
   int curves = 16;        // distinct random curves the points are spread over (not cache-hot)
   int threads = 0;        // 0 = all cores
   double noise = 0.0;     // points moved off the curve by up to noise x the curve's diagonal
+  bool mixed = false;     // with noise: every other point left on the curve (batches of both kinds)
   bool refine = true;
   bool fast_path = true;
   Algebraic algebraic = Algebraic::automatic;

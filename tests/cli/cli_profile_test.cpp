@@ -42,6 +42,30 @@ TEST(CliProfile, JsonReportsThroughputAndEveryOnCurvePointOk) {
   }
 }
 
+// --mixed leaves every other point on the curve: at noise up to 1e-2 of the diagonal (ten
+// thousand times the tolerance) those are the ok rows, nearly all the others off the curve,
+// answered by distance.
+TEST(CliProfile, MixedLeavesEveryOtherPointOnTheCurve) {
+  ScratchDirectory scratch{"bezinv-profile-test-"};
+  // A multiple of twice the 16 curves: every curve gets an even count, half of it on the curve.
+  const int points = bezinv::test_support::kSanitizerTree ? 640 : 3200;
+  const auto run = run_bezinv(scratch, "profile --degree 5 --noise 1e-2 --mixed --threads 1 --json --points " +
+                                           std::to_string(points));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto report = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(report.at("mixed").get<bool>());
+  // The half on the curve ok; of the other half, moved by up to 1e-2 of the diagonal (uniformly),
+  // about one in 10^4 lands within the tolerance and is ok too, the rest off the curve.
+  const int ok = report.at("ok").get<int>(), off = report.at("off_curve_path").get<int>();
+  EXPECT_GE(ok, points / 2);
+  EXPECT_LE(ok, points / 2 + points / 200);
+  EXPECT_EQ(ok + off, points);
+  const auto plain = nlohmann::json::parse(run_bezinv(scratch, "profile --degree 5 --noise 1e-2 --threads 1 --json "
+                                                               "--points " + std::to_string(points)).out);
+  EXPECT_FALSE(plain.at("mixed").get<bool>());
+  EXPECT_LT(plain.at("ok").get<int>(), points / 100);
+}
+
 TEST(CliProfile, RefusesADegreeOutOfRange) {
   ScratchDirectory scratch{"bezinv-profile-test-"};
   EXPECT_NE(run_bezinv(scratch, "profile --degree 0").exit_code, 0);
