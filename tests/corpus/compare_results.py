@@ -24,6 +24,13 @@ pass (path bezout_lu, sigma_next from the full kernel) or the SVD path (path bez
 singular values), or the other way, with the same status and reason and t, t2 and the residual
 within the bound.
 
+An ok row decided by the fast path's gap (path bezout_lu, sigma_min and sigma_next the full kernel's
+estimates: the gap pass, or the seed retry for a lane whose seed fell just short,
+engine/src/pipeline/seed_retry.hpp) where the base took the SVD path (path bezout, the exact
+singular values), or the other way, is the same answer when its status, reason, t, t2 and the
+residual are within the bound and the two sigma_next agree within the estimate's factor of 2 (the
+engine's gate, kFastPathGapRatio): counted as "other evidence".
+
 An ok row now answered from the inversion formula's start (path formula: no B was formed, so no
 singular values) where the base answered from B's null vector (path bezout_lu, or bezout where the
 seed left the row to the SVD path: a point off the curve within a loose tolerance), or the other
@@ -100,6 +107,23 @@ def certified_other_way(x, y):
         close("t2", x["t2"], y["t2"]) and close("residual", x["residual"], y["residual"])
 
 
+def gap_other_way(x, y):
+    """An ok row decided by the full kernel's gap in one (path bezout_lu, sigma_next an estimate)
+    and by the SVD path in the other (path bezout), the answer within the bound."""
+    def by_gap(r):
+        return r.get("path") in ("bezout_lu", 5) and not math.isnan(r["sigma_next"])
+
+    def by_svd(r):
+        return r.get("path") in ("bezout", 1)
+    if not (x.get("status") in ("ok", 0) and y.get("status") == x.get("status")):
+        return False
+    if not ((by_gap(x) and by_svd(y)) or (by_svd(x) and by_gap(y))):
+        return False
+    ratio = x["sigma_next"] / y["sigma_next"] if y["sigma_next"] > 0 else math.inf
+    return x.get("reason", "") == y.get("reason", "") and 0.5 <= ratio <= 2 and close("t", x["t"], y["t"]) and \
+        close("t2", x["t2"], y["t2"]) and close("residual", x["residual"], y["residual"])
+
+
 def started(r):
     """An ok row from an algebraic start: B's null vector (paths bezout, bezout_lu) or the formula."""
     return r.get("status") in ("ok", 0) and r.get("path") in ("bezout", "bezout_lu", "formula", 1, 5, 6)
@@ -132,7 +156,7 @@ def main(base, this):
         if off_curve_nearest(x) and off_curve_nearest(y) and close("residual", x["residual"], y["residual"]):
             other_evidence += 1
             continue
-        if certified_other_way(x, y):
+        if certified_other_way(x, y) or gap_other_way(x, y):
             other_evidence += 1
             continue
         if another_start(x, y):
