@@ -21,15 +21,17 @@ near one, as above): counted as "other evidence". So is an ok row whose second p
 certificate ruled out: the isolation certificate on the fast path (path bezout_lu, no
 sigma_next, sigma_min the seed's estimate; engine/src/isolation.hpp) where the base ran the gap
 pass (path bezout_lu, sigma_next from the full kernel) or the SVD path (path bezout, the exact
-singular values), or the other way, with the same status and reason and t, t2 and the residual
+singular values; bezout_pair, its search for a second parameter finding none other), or the
+other way, with the same status and reason and t, t2 and the residual
 within the bound.
 
 An ok row decided by the fast path's gap (path bezout_lu, sigma_min and sigma_next the full kernel's
 estimates: the gap pass, or the seed retry for a lane whose seed fell just short,
 engine/src/pipeline/seed_retry.hpp) where the base took the SVD path (path bezout, the exact
 singular values), or the other way, is the same answer when its status, reason, t, t2 and the
-residual are within the bound and the two sigma_next agree within the estimate's factor of 2 (the
-engine's gate, kFastPathGapRatio): counted as "other evidence".
+residual are within the bound and the estimate of sigma_next is at most twice the SVD's (the
+engine's gate, kFastPathGapRatio) and at least an eighth of it (the estimate is relative to
+||B||_F, up to sqrt(n) sigma_1, n <= 32): counted as "other evidence".
 
 An ok row now answered from the inversion formula's start (path formula: no B was formed, so no
 singular values) where the base answered from B's null vector (path bezout_lu, or bezout where the
@@ -97,8 +99,8 @@ def off_curve_nearest(r):
 def certified_other_way(x, y):
     """An ok row whose second parameter the isolation certificate ruled out in one (path bezout_lu,
     no sigma_next) and the gap pass or the SVD path in the other, the answer within the bound."""
-    def by_b(r):
-        return r.get("status") in ("ok", 0) and r.get("path") in ("bezout", "bezout_lu", 1, 5)
+    def by_b(r):  # the SVD path's pair search (bezout_pair) may have found the same parameter
+        return r.get("status") in ("ok", 0) and r.get("path") in ("bezout", "bezout_lu", "bezout_pair", 1, 2, 5)
 
     def isolated(r):
         return r.get("path") in ("bezout_lu", 5) and math.isnan(r["sigma_next"])
@@ -119,8 +121,9 @@ def gap_other_way(x, y):
         return False
     if not ((by_gap(x) and by_svd(y)) or (by_svd(x) and by_gap(y))):
         return False
-    ratio = x["sigma_next"] / y["sigma_next"] if y["sigma_next"] > 0 else math.inf
-    return x.get("reason", "") == y.get("reason", "") and 0.5 <= ratio <= 2 and close("t", x["t"], y["t"]) and \
+    gap, svd = (x, y) if by_gap(x) else (y, x)
+    ratio = gap["sigma_next"] / svd["sigma_next"] if svd["sigma_next"] > 0 else math.inf
+    return x.get("reason", "") == y.get("reason", "") and 1 / 8 <= ratio <= 2 and close("t", x["t"], y["t"]) and \
         close("t2", x["t2"], y["t2"]) and close("residual", x["residual"], y["residual"])
 
 
