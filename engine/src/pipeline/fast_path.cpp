@@ -47,7 +47,7 @@ namespace {
 // decide_with_gap with the refined point they kept.
 void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, BatchWorkspace& w,
               PointResult* results, StageClock& clock) {
-  full_kernel(plan, waiting, w, kFullKernelIterations);
+  full_kernel(plan, waiting, w, kernels::kNullVectorIterations);
   clock.lap(&StageSeconds::kernel);
   for (std::size_t k = 0; k < waiting; ++k) {
     const std::size_t l = w.gap_lane_of[k];
@@ -87,15 +87,15 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
                                    w.estimate.data(), poison.data(), kFastPathMaxDefect);
     return false;
   }
-  std::array<double, kBatchLanes> u, v, seeded_poison;
+  std::array<double, kBatchLanes> u, v, seeded_poison, t;
   for (std::size_t k = 0; k < seeded; ++k) u[k] = w.u[seeded_of[k]], v[k] = w.v[seeded_of[k]];
-  if (seeded > 0)
+  if (seeded > 0) {
     kernel.bezout_null_vector_seed(n, seeded, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                    bilinear_coefficients(plan), u.data(), v.data(), w.gap_z.data(),
                                    w.gap_defect.data(), w.gap_estimate.data(), seeded_poison.data(),
                                    kFastPathMaxDefect);
-  std::array<double, kBatchLanes> t;
-  if (seeded > 0) kernel.bernstein_parameter(n, seeded, stride, w.gap_z.data(), t.data());
+    kernel.bernstein_parameter(n, seeded, stride, w.gap_z.data(), t.data());
+  }
   // Lane l is seeded lane k where seeded_of[k] == l (in order); the others get an unsettled
   // seed's numbers (no t: its defect).
   const double inf = std::numeric_limits<double>::infinity();

@@ -43,10 +43,8 @@ bool forms_b_late(const PlanData& plan, const InvertOptions& options);
 void fast_path(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                const InvertOptions& options, BatchWorkspace& w, StageClock& clock);
 
-// The full kernel's solves in pass 2: three, as kernels' null_vector (the seed retry asks for more).
-inline constexpr int kFullKernelIterations = 3;
-
-// The full kernel (pivoted LU, `iterations` solves, the sigma_{n-1} estimate) for the lanes
+// The full kernel (pivoted LU, `iterations` solves: kernels::kNullVectorIterations in pass 2, more
+// for the seed retry; the sigma_{n-1} estimate) for the lanes
 // w.gap_lane_of[0..waiting), compacted, B formed for them from (w.u, w.v); its z, second vector,
 // defect and estimates put back in their lanes.
 void full_kernel(const PlanData& plan, std::size_t waiting, BatchWorkspace& w, int iterations);

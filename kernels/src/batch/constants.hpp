@@ -2,6 +2,8 @@
 // The numbers that decide, for the lane-batched kernels (bezinv/kernels/batch.hpp), in one place.
 #include <limits>
 
+#include "bezinv/kernels/batch.hpp"
+
 namespace bezinv::kernels::batch {
 
 // Unit roundoff scale used by every tolerance below (2^-52).
@@ -19,7 +21,7 @@ inline constexpr int kJacobiMaxSweeps = 15;
 // Inverse iteration for the null vector: iterations from (1, ..., 1). With a pivot of order
 // eps ||B||, one iteration already damps the other directions by sigma_n / sigma_{n-1}; the next
 // two are there to *measure* convergence (the defect).
-inline constexpr int kInverseIterations = 3;
+inline constexpr int kInverseIterations = kNullVectorIterations;
 // The seed (null_vector_seed) measures its settling over its last step alone, so two solves do:
 // nothing trusts the seed (its caller checks what it refines to by other means), and the settling
 // measure only spares the refinement lanes whose z has not converged.

@@ -44,6 +44,9 @@ inline constexpr int kRationalNewtonMaxDegree = kMaxBatchSize;
 inline constexpr int kSpaceCheckMinDegree = 1;            // space_check: the curve's degree
 inline constexpr int kSpaceCheckMaxDegree = kMaxBatchSize;
 
+// null_vector's solves from (1, ..., 1); null_vector_iterations takes at least as many.
+inline constexpr int kNullVectorIterations = 3;
+
 // The plane curve of rational_newton, (x_num / x_den, y_num / y_den): four polynomials in the
 // Bernstein basis of degree `degree` (kRationalNewtonMinDegree..kRationalNewtonMaxDegree),
 // degree + 1 coefficients each.
