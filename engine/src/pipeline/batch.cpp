@@ -1,7 +1,9 @@
 #include "pipeline/batch.hpp"
 
+#include <algorithm>
 #include <array>
 
+#include "pipeline/by_kind.hpp"
 #include "pipeline/fast_path.hpp"
 #include "pipeline/off_curve_path.hpp"
 #include "pipeline/form_b.hpp"
@@ -16,50 +18,34 @@
 namespace bezinv::detail {
 namespace {
 
-// One batch through the stages, but for the lanes left waiting in this thread's queues.
-// Returns whether it left lanes in the seed retry's queue.
-bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
-                        const InvertOptions& options, StageSeconds* stages) {
-  BatchWorkspace& w = batch_workspace();
+// The lanes w's lanes 0..count leave undecided, to the SVD path (lane l's answer goes to rows[l]);
+// b_formed: w.B holds their B. Returns whether it left lanes in the seed retry's queue.
+bool route_undecided(const PlanData& plan, LaneRows rows, std::size_t count, const InvertOptions& options,
+                     BatchWorkspace& w, StageClock& clock, bool b_formed, StageSeconds* stages) {
   const int n = plan.degree, nn = n * n;
   const std::size_t stride = kBatchLanes;
-  StageClock clock(stages);
-
-  const bool fast = takes_fast_path(plan, options);
-  const bool formed_b = forms_b_late(plan, options);
-  form_batch(plan, points, results, count, /*form=*/n >= 2 && !formed_b, w);
-  clock.lap(&StageSeconds::form_b);
-
-  if (fast) {
-    fast_path(plan, points, results, count, options, w, clock);
-    off_curve_path(plan, options, count, w, results, clock);
-  } else if (reports_formula_unrefined(plan, options)) {
-    formula_unrefined(plan, options, count, w, results);
-    clock.lap(&StageSeconds::refine);
-  }
-
   // The SVD path for the lanes still undecided, compacted to the front of the batch (in order, so
   // moving lane lane_of[k] >= k down to k never overwrites a lane still to be moved).
   // A lane whose seed fell short waits for the seed retry instead (seed_retry.hpp).
-  const bool retries = fast && n >= 3;
+  const bool retries = takes_fast_path(plan, options) && n >= 3;
   bool retried = false;
   std::size_t m = 0;
   for (std::size_t l = 0; l < count; ++l) {
     if (!w.active[l]) continue;
     if (retries && retries_seed(w, l)) {
-      seed_retry_queue().push(w.u[l], w.v[l], &results[l]);
+      seed_retry_queue().push(w.u[l], w.v[l], &rows[l]);
       retried = true;
       continue;
     }
     if (m != l) {
-      if (!formed_b)
+      if (b_formed)
         for (int i = 0; i < nn; ++i) w.B[i * stride + m] = w.B[i * stride + l];
       w.u[m] = w.u[l];
       w.v[m] = w.v[l];
     }
     w.lane_of[m++] = static_cast<std::uint8_t>(l);
   }
-  if (formed_b && m > 0) form_compacted_b(plan, w.u.data(), w.v.data(), m, w.B.data());
+  if (!b_formed && m > 0) form_compacted_b(plan, w.u.data(), w.v.data(), m, w.B.data());
 
   if (m == 0) {
     clock.lap(&StageSeconds::decide);  // the routing above is the decide stage's
@@ -68,42 +54,150 @@ bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
   SvdQueue& queue = svd_queue();
   if (m >= kSvdGroupLanes || queue.size + m > kBatchLanes) {  // enough for a group: here and now
     std::array<PointResult*, kBatchLanes> target;
-    for (std::size_t k = 0; k < m; ++k) target[k] = &results[w.lane_of[k]];
+    for (std::size_t k = 0; k < m; ++k) target[k] = &rows[w.lane_of[k]];
     svd_path(plan, w.B.data(), w.u.data(), w.v.data(), target.data(), m, options, w, clock);
     return retried;
   }
-  for (std::size_t k = 0; k < m; ++k) queue.push(nn, w.B.data(), k, w.u[k], w.v[k], &results[w.lane_of[k]]);
+  for (std::size_t k = 0; k < m; ++k) queue.push(nn, w.B.data(), k, w.u[k], w.v[k], &rows[w.lane_of[k]]);
   clock.lap(&StageSeconds::decide);
   if (queue.size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);
   return retried;
 }
 
-}  // namespace
+// The fast path's stages after the seed, then the SVD path's routing, for w's lanes 0..count.
+// on_curve: every lane's estimate is known to be at most kOnCurveEstimate.
+bool decide_lanes(const PlanData& plan, LaneRows rows, std::size_t count, bool on_curve, const InvertOptions& options,
+                  BatchWorkspace& w, StageClock& clock, bool b_formed, StageSeconds* stages) {
+  fast_path_decide(plan, rows, count, on_curve, options, w, clock);
+  off_curve_path(plan, options, count, w, rows, clock);
+  return route_undecided(plan, rows, count, options, w, clock, b_formed, stages);
+}
 
-// One batch, with this thread's pair-check queue around it: flushed first if the batch's lanes
-// might not fit in it, and after once enough roots wait to fill a SIMD group (both outside
-// invert_batch_lanes, whose workspace the SVD path also uses).
-void invert_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
-                  const InvertOptions& options, StageSeconds* stages) {
+// The fast path from the seed on for w's lanes 0..count (their points, as given, in `points`):
+// the seed, then the lanes sorted by kind where the plan's are (by_kind.hpp), then decide_lanes.
+bool seed_and_decide(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
+                     const InvertOptions& options, BatchWorkspace& w, StageClock& clock, bool b_formed,
+                     StageSeconds* stages) {
+  fast_path_seed(plan, points, rows, count, options, w, clock);
+  if (!sorts_by_kind(plan, options)) return decide_lanes(plan, rows, count, false, options, w, clock, b_formed, stages);
+  std::array<PointResult*, kBatchLanes> gathered;
+  bool on_curve = false;
+  const std::size_t kept = sort_by_kind(count, rows, w, gathered, on_curve);
+  clock.lap(&StageSeconds::read_out);
+  if (kept == count) return decide_lanes(plan, rows, count, on_curve, options, w, clock, b_formed, stages);
+  // Lanes moved down no longer have their B in w.B: those the SVD path takes form theirs.
+  return kept > 0 && decide_lanes(plan, LaneRows(gathered.data()), kept, on_curve, options, w, clock, false, stages);
+}
+
+// One batch through the stages, but for the lanes left waiting in this thread's queues.
+// Returns whether it left lanes in the seed retry's queue.
+bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+                        const InvertOptions& options, StageSeconds* stages) {
+  BatchWorkspace& w = batch_workspace();
+  StageClock clock(stages);
+  const bool fast = takes_fast_path(plan, options);
+  const bool formed_b = forms_b_late(plan, options);
+  form_batch(plan, points, results, count, /*form=*/plan.degree >= 2 && !formed_b, w);
+  clock.lap(&StageSeconds::form_b);
+  const LaneRows rows(results);
+  if (!fast) {
+    if (reports_formula_unrefined(plan, options)) {
+      formula_unrefined(plan, options, count, w, results);
+      clock.lap(&StageSeconds::refine);
+    }
+    return route_undecided(plan, rows, count, options, w, clock, !formed_b, stages);
+  }
+  if (sorts_by_kind(plan, options) &&
+      set_aside_far(plan, normalized_tolerance(plan, options), points, results, count, w)) {
+    clock.lap(&StageSeconds::read_out);
+    return false;
+  }
+  return seed_and_decide(plan, points, rows, count, options, w, clock, !formed_b, stages);
+}
+
+// The first m lanes of the seed queue (by_kind.hpp), as a batch before its seed.
+bool invert_seed_queue(const PlanData& plan, std::size_t m, const InvertOptions& options, StageSeconds* stages) {
+  BatchWorkspace& w = batch_workspace();
+  StageClock clock(stages);
+  std::array<Point, kBatchLanes> points;
+  std::array<PointResult*, kBatchLanes> rows;
+  take_from_seed_queue(m, w, points, rows);
+  clock.lap(&StageSeconds::form_b);
+  return seed_and_decide(plan, points.data(), LaneRows(rows.data()), m, options, w, clock, /*b_formed=*/false,
+                         stages);
+}
+
+// The first m lanes of a kind's queue (by_kind.hpp), as a batch after its seed.
+bool invert_queued_lanes(const PlanData& plan, KindQueue& queue, std::size_t m, const InvertOptions& options,
+                         StageSeconds* stages) {
+  BatchWorkspace& w = batch_workspace();
+  StageClock clock(stages);
+  std::array<PointResult*, kBatchLanes> rows;
+  take_from_queue(queue, m, w, rows);
+  clock.lap(&StageSeconds::read_out);
+  return decide_lanes(plan, LaneRows(rows.data()), m, &queue == &kind_queue(LaneKind::on_curve), options, w, clock,
+                      /*b_formed=*/false, stages);
+}
+
+// A batch's worth of lanes (count <= kBatchLanes, run by `lanes`), with this thread's pair-check
+// queue around it: flushed first if the lanes might not fit in it, and after once enough roots
+// wait to fill a SIMD group (both outside `lanes`, whose workspace the SVD path also uses); and
+// the seed retry's queue after, once it fills the kernel's group.
+template <typename Lanes>
+void with_queues(const PlanData& plan, std::size_t count, const InvertOptions& options, StageSeconds* stages,
+                 Lanes lanes) {
   PairCheckQueue& pairs = pair_check_queue();
   if (pairs.lanes + count > kPairCheckLanes) flush_pair_check_queue(plan, options, stages);
-  if (invert_batch_lanes(plan, points, results, count, options, stages) &&
-      seed_retry_queue().size >= kSeedRetryFlushLanes)
-    flush_seed_retry_queue(plan, options, stages);
+  if (lanes() && seed_retry_queue().size >= kSeedRetryFlushLanes) flush_seed_retry_queue(plan, options, stages);
   if (pairs.near + pairs.far >= kPairCheckFlushRoots) {
     flush_pair_check_queue(plan, options, stages);
     if (svd_queue().size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);
   }
 }
 
+// Runs the kind queues' lanes, a batch at a time, while at least `least` wait in one.
+void run_kind_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages, std::size_t least) {
+  for (const LaneKind kind : {LaneKind::on_curve, LaneKind::off_curve}) {
+    KindQueue& queue = kind_queue(kind);
+    while (queue.size > 0 && queue.size >= least) {
+      const std::size_t m = std::min(queue.size, kBatchLanes);
+      with_queues(plan, m, options, stages, [&] { return invert_queued_lanes(plan, queue, m, options, stages); });
+    }
+  }
+}
+
+// Runs the seed queue's lanes, a batch at a time, while at least `least` wait in it, then the kind
+// queues' (which the seed queue's batches fill), keeping each below kBatchLanes lanes between
+// batches (the room their capacity leaves for one more).
+void run_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages, std::size_t least) {
+  run_kind_queues(plan, options, stages, kBatchLanes);
+  SeedQueue& seeds = seed_queue();
+  while (seeds.size > 0 && seeds.size >= least) {
+    const std::size_t m = std::min(seeds.size, kBatchLanes);
+    with_queues(plan, m, options, stages, [&] { return invert_seed_queue(plan, m, options, stages); });
+    run_kind_queues(plan, options, stages, kBatchLanes);
+  }
+  run_kind_queues(plan, options, stages, least);
+}
+
+}  // namespace
+
+void invert_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+                  const InvertOptions& options, StageSeconds* stages) {
+  with_queues(plan, count, options, stages,
+              [&] { return invert_batch_lanes(plan, points, results, count, options, stages); });
+  if (sorts_by_kind(plan, options)) run_queues(plan, options, stages, kBatchLanes);
+}
 
 void flush_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages) {
+  run_queues(plan, options, stages, 1);
   flush_seed_retry_queue(plan, options, stages);
   flush_pair_check_queue(plan, options, stages);
   flush_svd_queue(plan, options, stages);
 }
 
 QueueScope::~QueueScope() {
+  seed_queue().size = kind_queue(LaneKind::on_curve).size = kind_queue(LaneKind::off_curve).size = 0;
   seed_retry_queue().size = 0;
   svd_queue().size = 0;
   PairCheckQueue& pairs = pair_check_queue();

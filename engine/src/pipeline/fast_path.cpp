@@ -46,12 +46,12 @@ namespace {
 // Pass 2, the gap pass: the full kernel for the `waiting` lanes w.gap_lane_of[0..waiting), then
 // decide_with_gap with the refined point they kept.
 void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, BatchWorkspace& w,
-              PointResult* results, StageClock& clock) {
+              LaneRows rows, StageClock& clock) {
   full_kernel(plan, waiting, w, kernels::kNullVectorIterations);
   clock.lap(&StageSeconds::kernel);
   for (std::size_t k = 0; k < waiting; ++k) {
     const std::size_t l = w.gap_lane_of[k];
-    if (gap_decides(w, l)) decide_with_gap(plan, w, l, w.main[l], tolerance, true, results[l]);
+    if (gap_decides(w, l)) decide_with_gap(plan, w, l, w.main[l], tolerance, true, rows[l]);
   }
   clock.lap(&StageSeconds::refine);
 }
@@ -75,7 +75,7 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
   const kernels::Implementation& kernel = kernels::active_implementation();
   std::array<std::uint8_t, kBatchLanes> seeded_of;
   std::size_t seeded = 0;
-  if (!plan.segment_far_near.empty() && tolerance <= 0.25 * plan.segment_far_reach) {
+  if (skips_far_seeds(plan, tolerance)) {
     for (std::size_t l = 0; l < count; ++l)
       if (!segment_far(plan, w.u[l], w.v[l])) seeded_of[seeded++] = static_cast<std::uint8_t>(l);
   } else {
@@ -159,16 +159,16 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
 // batch. A seed that did not settle has no t and an infinite estimate (the seeds leave its residual
 // uncomputed): it is not in the on-curve lanes' groups, and, like every off-curve lane without a
 // start in [0, 1], it takes no place in nearest_newton's either (off the curve, most lanes).
+// on_curve: every lane's estimate is known to be at most kOnCurveEstimate (by_kind.hpp told it).
 [[gnu::noinline]] void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
-                                      bool formula, BatchWorkspace& w) {
-  constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
+                                      bool formula, bool on_curve, BatchWorkspace& w) {
   constexpr double kFormulaOffCurveDistance = 1e-10;
   const kernels::RationalCurve curve = kernel_curve(plan);
   kernels::NewtonSettings settings = kNewtonSettings;
   if (formula) settings.leave_distance = kFormulaOffCurveDistance;
   std::array<std::uint8_t, kBatchLanes> near_of, far_of;
-  std::size_t near = 0, far = 0;
-  for (std::size_t l = 0; l < count; ++l) {
+  std::size_t near = on_curve ? count : 0, far = 0;
+  for (std::size_t l = 0; l < count && !on_curve; ++l) {
     if (!(w.estimate[l] > kOnCurveEstimate)) near_of[near++] = static_cast<std::uint8_t>(l);
     else if (w.t_refined[l] >= 0.0 && w.t_refined[l] <= 1.0) far_of[far++] = static_cast<std::uint8_t>(l);
     else w.distance[l] = PointResult::nan;  // as nearest_newton would give it back
@@ -190,8 +190,10 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
     }
   }
   if (left > 0)  // the lanes rational_newton left (their t unmoved) join the others
-    for (std::size_t k = 0; k < near; ++k)
-      if (w.distance[near_of[k]] == std::numeric_limits<double>::infinity()) far_of[far++] = near_of[k];
+    for (std::size_t k = 0; k < near; ++k) {
+      const std::uint8_t l = near == count ? static_cast<std::uint8_t>(k) : near_of[k];
+      if (w.distance[l] == std::numeric_limits<double>::infinity()) far_of[far++] = l;
+    }
   if (far > 0) refine_off_curve(kernel, plan, far, far_of, w);
 }
 
@@ -205,7 +207,7 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
 // they do not prove go on as before (settle() then runs for them); off_curve_path does not look at
 // them again. One call for all of them keeps the kernel's groups full.
 void off_curve_first(const PlanData& plan, const InvertOptions& options, double tolerance, std::size_t count,
-                     BatchWorkspace& w, PointResult* results, StageClock& clock) {
+                     BatchWorkspace& w, LaneRows rows, StageClock& clock) {
   std::uint8_t any_active = 0;  // on the curve, every lane is usually done by now
   for (std::size_t l = 0; l < count; ++l) any_active |= w.active[l];
   if (!any_active) return;
@@ -222,34 +224,39 @@ void off_curve_first(const PlanData& plan, const InvertOptions& options, double 
   if (left == 0) return;
   clock.lap(&StageSeconds::refine);
   for (std::size_t l = 0; l < count; ++l) active[l] = w.active[l], w.active[l] = leaves[l];
-  off_curve_path(plan, options, count, w, results, clock);
+  off_curve_path(plan, options, count, w, rows, clock);
   for (std::size_t l = 0; l < count; ++l)
     if (!leaves[l]) w.active[l] = active[l];
 }
 
 }  // namespace
 
-void fast_path(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
-               const InvertOptions& options, BatchWorkspace& w, StageClock& clock) {
+namespace {
+
+// Degree 2 decides each lane with B's gap at once (the pivoted kernel gives it); a conic's
+// formula lanes have no B, so on the formula path they take the two passes: the isolation
+// certificate, then the gap pass for the lanes it leaves.
+bool takes_two_passes(const PlanData& plan, bool formula) { return plan.degree >= 3 || formula; }
+
+}  // namespace
+
+void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
+                    const InvertOptions& options, BatchWorkspace& w, StageClock& clock) {
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
   const double tolerance = normalized_tolerance(plan, options);
   const bool formed_b = forms_b_in_seed(plan, options);
   const kernels::Implementation& kernel = kernels::active_implementation();
   const bool formula = takes_formula_path(plan, options);
-  // Degree 2 decides each lane with B's gap at once (the pivoted kernel gives it); a conic's
-  // formula lanes have no B, so on the formula path they take the two passes: the isolation
-  // certificate, then the gap pass for the lanes it leaves.
-  const bool two_passes = n >= 3 || formula;
-  std::fill_n(w.off_curve_tried.begin(), count, std::uint8_t{0});
+  const bool two_passes = takes_two_passes(plan, formula);
   bool read_out = true;  // t still to be read from w.z
   if (formula) {
-    formula_or_seed(plan, points, results, count, w);
+    formula_or_seed(plan, points, rows, count, w);
     clock.lap(&StageSeconds::kernel);
   } else if (formed_b) {
     std::array<double, kBatchLanes> poison;
     read_out = !formed_seed(plan, count, tolerance, w, poison);
-    mark_overflowing_b(plan, points, poison.data(), count, w, results);
+    mark_overflowing_b(plan, points, poison.data(), count, w, rows);
   } else if (two_passes) {
     kernel.null_vector_seed(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),
                             kFastPathMaxDefect);
@@ -261,19 +268,28 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
     clock.lap(&StageSeconds::kernel);
     if (read_out) kernel.bernstein_parameter(n, count, stride, w.z.data(), w.t_algebraic.data());
   }
-  // Where the formula gave t, the lane's path says so.
-  auto path_of = [&](std::size_t l) { return formula && w.from_formula[l] ? Path::formula : Path::bezout_lu; };
   for (std::size_t l = 0; l < count; ++l)
     if (!w.active[l] || !(w.defect[l] <= kFastPathMaxDefect) ||
         (!two_passes && !(w.estimate[stride + l] >= kFastPathMinGap)))
       w.t_algebraic[l] = PointResult::nan;
   clock.lap(&StageSeconds::read_out);
+}
+
+void fast_path_decide(const PlanData& plan, LaneRows rows, std::size_t count, bool on_curve,
+                      const InvertOptions& options, BatchWorkspace& w, StageClock& clock) {
+  const double tolerance = normalized_tolerance(plan, options);
+  const kernels::Implementation& kernel = kernels::active_implementation();
+  const bool formula = takes_formula_path(plan, options);
+  const bool two_passes = takes_two_passes(plan, formula);
+  std::fill_n(w.off_curve_tried.begin(), count, std::uint8_t{0});
+  // Where the formula gave t, the lane's path says so.
+  auto path_of = [&](std::size_t l) { return formula && w.from_formula[l] ? Path::formula : Path::bezout_lu; };
   // Refinement, lane-batched: the kernel runs refine.cpp's safeguarded Newton for every lane whose
   // t_algebraic is in [0,1] and gives settle()'s numbers bit for bit. It leaves the rest to
   // settle(), as it does a lane that ends at an end of the segment off the curve (settle() then
   // also looks along the extension).
   std::copy_n(w.t_algebraic.begin(), count, w.t_refined.begin());
-  refine_grouped(kernel, plan, count, formula, w);
+  refine_grouped(kernel, plan, count, formula, on_curve, w);
   detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
   if (two_passes) {
     // The common case of pass 1, for the whole batch first: a lane refined onto the segment within
@@ -287,10 +303,10 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
       if (w.certified[l] && w.active[l] && (!w.drops[l] || (formula && w.from_formula[l])) &&
           std::isfinite(w.t_algebraic[l]) && w.distance[l] <= tolerance) {
         w.active[l] = 0;
-        answer_fast(plan, w.t_refined[l], w.distance[l], w.estimate[l], PointResult::nan, results[l], path_of(l));
+        answer_fast(plan, w.t_refined[l], w.distance[l], w.estimate[l], PointResult::nan, rows[l], path_of(l));
       }
   }
-  if (two_passes) off_curve_first(plan, options, tolerance, count, w, results, clock);
+  if (two_passes) off_curve_first(plan, options, tolerance, count, w, rows, clock);
   std::size_t waiting = 0;  // lanes of pass 2
   for (std::size_t l = 0; l < count; ++l) {
     if (!w.active[l] || w.drops[l]) continue;
@@ -312,19 +328,19 @@ void fast_path(const PlanData& plan, const Point* points, PointResult* results, 
       }
     }
     if (!two_passes) {
-      if (refined) decide_with_gap(plan, w, l, c, tolerance, false, results[l]);
+      if (refined) decide_with_gap(plan, w, l, c, tolerance, false, rows[l]);
       continue;
     }
     if (!refined) continue;  // z did not settle: the SVD path
     if (c.on_segment && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance)) {
       w.active[l] = 0;
-      answer_fast(plan, c.t, c.distance, w.estimate[l], PointResult::nan, results[l], path_of(l));
+      answer_fast(plan, c.t, c.distance, w.estimate[l], PointResult::nan, rows[l], path_of(l));
     } else if (c.on_segment) {
       w.gap_lane_of[waiting++] = static_cast<std::uint8_t>(l);
     }  // off the curve: the off-curve path, then (if it cannot prove its answer) the SVD path
   }
   clock.lap(&StageSeconds::refine);
-  if (waiting > 0) gap_pass(plan, waiting, tolerance, w, results, clock);
+  if (waiting > 0) gap_pass(plan, waiting, tolerance, w, rows, clock);
 }
 
 }  // namespace bezinv::detail

@@ -29,7 +29,7 @@ void form_batch(const PlanData& plan, const Point* points, PointResult* results,
   kernels::active_implementation().bezout_matrix(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                                  bilinear_coefficients(plan), w.u.data(), w.v.data(), w.B.data(),
                                                  poison.data());
-  mark_overflowing_b(plan, points, poison.data(), count, w, results);
+  mark_overflowing_b(plan, points, poison.data(), count, w, LaneRows(results));
   for (std::size_t l = 0; l < count; ++l) {
     if (!w.active[l])
       for (int i = 0; i < nn; ++i) w.B[i * stride + l] = (i % (n + 1) == 0) ? 1.0 : 0.0;
@@ -37,10 +37,10 @@ void form_batch(const PlanData& plan, const Point* points, PointResult* results,
 }
 
 void mark_overflowing_b(const PlanData& plan, const Point* points, const double* poison, std::size_t count,
-                        BatchWorkspace& w, PointResult* results) {
+                        BatchWorkspace& w, LaneRows rows) {
   for (std::size_t l = 0; l < count; ++l)
     if (w.active[l] && !(poison[l] == 0.0)) {
-      answer_far_point(plan, points[l], results[l]);
+      answer_far_point(plan, points[l], rows[l]);
       w.active[l] = 0;
     }
 }

@@ -18,7 +18,7 @@ void form_batch(const PlanData& plan, const Point* points, PointResult* results,
 // A lane whose Bezout matrix overflowed (poison[l] not 0: an entry is not finite) is a point too
 // far to form B for: answered off_curve by answer_far_point, it leaves the pipeline.
 void mark_overflowing_b(const PlanData& plan, const Point* points, const double* poison, std::size_t count,
-                        BatchWorkspace& w, PointResult* results);
+                        BatchWorkspace& w, LaneRows rows);
 
 // The kernels' Bxy: null for one denominator, where Bxy = Bez(W, W) = 0 and B is affine in (u, v),
 // so that they skip the term and give bezout_at's bits, which skips it too.

@@ -112,7 +112,7 @@ void linear_formula_parameters(const FormulaPathData& f, std::size_t count, cons
   }
 }
 
-void formula_or_seed(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+void formula_or_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
                      BatchWorkspace& w) {
   const FormulaPathData& f = fast_path_formula(plan);
   const int n = plan.degree;
@@ -166,7 +166,7 @@ void formula_or_seed(const PlanData& plan, const Point* points, PointResult* res
     w.estimate[l] = w.gap_estimate[k];
     lane_poison[l] = poison[k];
   }
-  mark_overflowing_b(plan, points, lane_poison.data(), count, w, results);
+  mark_overflowing_b(plan, points, lane_poison.data(), count, w, rows);
 }
 
 void formula_unrefined(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,

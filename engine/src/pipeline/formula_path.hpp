@@ -42,7 +42,7 @@ void linear_formula_parameters(const FormulaPathData& f, std::size_t count, cons
 // The algebraic step of the fast path for every active lane: t_algebraic, defect and the sigma_min
 // estimate (NaN on formula lanes), from_formula. The seed's lanes have their B formed here; a lane
 // whose B overflows is answered as a far point.
-void formula_or_seed(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+void formula_or_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
                      BatchWorkspace& w);
 
 // With refine off: every active lane whose N/M is a parameter of the segment within the tolerance

@@ -16,13 +16,13 @@
 namespace bezinv::detail {
 
 void off_curve_path(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
-                    PointResult* results, StageClock& clock) {
+                    LaneRows rows, StageClock& clock) {
   // Points on the curve have all left the batch by now (the common case): nothing to do.
   std::uint8_t any_active = 0;
   for (std::size_t l = 0; l < count; ++l) any_active |= w.active[l];
   if (!any_active) return clock.lap(&StageSeconds::off_curve);
   const bool projection = projects_off_curve(plan, options);
-  if (projection) projection_path(plan, options, count, w, results);
+  if (projection) projection_path(plan, options, count, w, rows);
 
   const double radius = off_curve_radius(normalized_tolerance(plan, options));
 
@@ -81,7 +81,7 @@ void off_curve_path(const PlanData& plan, const InvertOptions& options, std::siz
     if (!nearest.certified || !(nearest.distance > radius) || !extension_clear(plan, u[k], v[k], radius, grid)) continue;
     const std::size_t l = lane_of[k];
     w.active[l] = 0;
-    PointResult& r = results[l];
+    PointResult& r = rows[l];
     r.t = nearest.t;
     r.residual = nearest.distance * plan.scale;
     r.status = Status::off_curve;

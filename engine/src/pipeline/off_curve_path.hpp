@@ -30,8 +30,8 @@ inline double off_curve_radius(double tolerance) { return tolerance * (1 + kIsol
 
 // For every active lane it has not looked at before (w.off_curve_tried, which it sets): the fast
 // path calls it for the lanes it would leave, before its own per-lane loop, and invert_batch for
-// whatever the fast path left after.
+// whatever the fast path left after. Lane l's answer goes to rows[l].
 void off_curve_path(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
-                    PointResult* results, StageClock& clock);
+                    LaneRows rows, StageClock& clock);
 
 }  // namespace bezinv::detail

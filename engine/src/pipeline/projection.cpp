@@ -29,7 +29,7 @@ void project_off_curve(const PlanData& plan, double u0, double v0, double beyond
 }
 
 void projection_path(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
-                     PointResult* results) {
+                     LaneRows rows) {
   const double tolerance = normalized_tolerance(plan, options), radius = off_curve_radius(tolerance);
   const FormulaPathData& f = formula_path_data(plan);
   for (std::size_t l = 0; l < count; ++l) {
@@ -55,7 +55,7 @@ void projection_path(const PlanData& plan, const InvertOptions& options, std::si
     // Within the radius (rounding, as the whole segment was proved farther): not by projection.
     if (!(projected_distance > radius) || !std::isfinite(projected_distance)) continue;
     w.active[l] = 0;
-    PointResult& r = results[l];
+    PointResult& r = rows[l];
     r.status = Status::off_curve;
     r.t = projected;
     r.residual = projected_distance * plan.scale;

@@ -35,6 +35,6 @@ void project_off_curve(const PlanData& plan, double u0, double v0, double beyond
 // every active lane whose refinement ended on the segment farther than the tolerance, and whose
 // proof holds, is answered off_curve by projection and leaves the batch.
 void projection_path(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
-                     PointResult* results);
+                     LaneRows rows);
 
 }  // namespace bezinv::detail

@@ -15,6 +15,19 @@ namespace bezinv::detail {
 // stay in cache up to moderate degrees. Speed only: no answer depends on it.
 inline constexpr std::size_t kBatchLanes = 64;
 
+// Where lane l of a batch answers: results[l] for a batch of consecutive points (the common case:
+// an address, not a load), *rows[l] for lanes gathered from several batches (by_kind.hpp).
+class LaneRows {
+ public:
+  explicit LaneRows(PointResult* consecutive) : consecutive_(consecutive) {}
+  explicit LaneRows(PointResult* const* gathered) : gathered_(gathered) {}
+  PointResult& operator[](std::size_t l) const { return gathered_ != nullptr ? *gathered_[l] : consecutive_[l]; }
+
+ private:
+  PointResult* consecutive_ = nullptr;
+  PointResult* const* gathered_ = nullptr;
+};
+
 // Per-thread storage for one batch, sized for the largest degree once: nothing is allocated per
 // point or per batch. Matrices and vectors are lane-major: entry i of lane l at [i * kBatchLanes + l].
 struct BatchWorkspace {
