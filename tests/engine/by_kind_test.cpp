@@ -7,6 +7,7 @@
 // must put each lane where its kind says.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -104,12 +105,13 @@ TEST(LanesByKind, SortPutsEachLaneWhereItsKindSays) {
     }
   };
   std::array<PointResult*, kBatchLanes> gathered;
-  bool on_curve = false;
-
+  
   // Half and half: every active lane leaves for its kind's queue, in order.
   on_queue.size = off_queue.size = 0;
   fill([](std::size_t l) { return l % 2 == 1; });
-  EXPECT_EQ(detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered, on_curve), 0u);
+  const detail::KindSort all_leave = detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered);
+  EXPECT_TRUE(all_leave.moved);
+  EXPECT_EQ(all_leave.kept, 0u);
   ASSERT_EQ(on_queue.size, kBatchLanes / 2);
   ASSERT_EQ(off_queue.size, kBatchLanes / 2 - 1);  // lane 7 stays behind, answered already
   for (std::size_t k = 0; k < on_queue.size; ++k) {
@@ -124,11 +126,34 @@ TEST(LanesByKind, SortPutsEachLaneWhereItsKindSays) {
     EXPECT_EQ(off_queue.target[k], &results[l]);
   }
 
+  // Half and half again, with 40 lanes waiting on the curve: the batch's 32 stay, and the queue's
+  // first 32 join them; the off-curve lanes leave.
+  for (std::size_t k = 0; k < 40; ++k) on_queue.u[k] = 1000.0 + static_cast<double>(k);
+  on_queue.size = 40;
+  off_queue.size = 0;
+  fill([](std::size_t l) { return l % 2 == 1; });
+  std::array<PointResult*, 40> waiting;
+  std::copy_n(on_queue.target.begin(), 40, waiting.begin());
+  const detail::KindSort joined = detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered);
+  EXPECT_TRUE(joined.moved);
+  ASSERT_EQ(joined.kept, kBatchLanes);
+  EXPECT_TRUE(joined.on_curve);
+  EXPECT_EQ(off_queue.size, kBatchLanes / 2 - 1);
+  ASSERT_EQ(on_queue.size, 8u);
+  for (std::size_t k = 0; k < 8; ++k) EXPECT_EQ(on_queue.u[k], 1032.0 + static_cast<double>(k));
+  for (std::size_t k = 0; k < kBatchLanes; ++k) {
+    EXPECT_EQ(w.u[k], k < 32 ? 2.0 * k : 1000.0 + static_cast<double>(k - 32)) << k;
+    EXPECT_EQ(gathered[k], k < 32 ? &results[2 * k] : waiting[k - 32]) << k;
+    EXPECT_EQ(w.active[k], 1);
+  }
+
   // Few off the curve (kKindStaysAbove): they leave; the others stay, compacted, in order.
   on_queue.size = off_queue.size = 0;
   fill([](std::size_t l) { return l == 10 || l == 40; });
-  const std::size_t kept = detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered, on_curve);
-  EXPECT_TRUE(on_curve);
+  const detail::KindSort few = detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered);
+  const std::size_t kept = few.kept;
+  EXPECT_TRUE(few.moved);
+  EXPECT_TRUE(few.on_curve);
   ASSERT_EQ(kept, kBatchLanes - 3);  // less lane 7, 10 and 40
   EXPECT_EQ(on_queue.size, 0u);
   ASSERT_EQ(off_queue.size, 2u);
@@ -144,12 +169,16 @@ TEST(LanesByKind, SortPutsEachLaneWhereItsKindSays) {
   // One kind only (lane 7 apart): the batch is left as it is.
   on_queue.size = off_queue.size = 0;
   fill([](std::size_t) { return true; });
-  EXPECT_EQ(detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered, on_curve), kBatchLanes);
-  EXPECT_FALSE(on_curve);
+  const detail::KindSort off_only = detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered);
+  EXPECT_FALSE(off_only.moved);
+  EXPECT_EQ(off_only.kept, kBatchLanes);
+  EXPECT_FALSE(off_only.on_curve);
   EXPECT_EQ(on_queue.size + off_queue.size, 0u);
   fill([](std::size_t) { return false; });
-  EXPECT_EQ(detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered, on_curve), kBatchLanes);
-  EXPECT_TRUE(on_curve);
+  const detail::KindSort on_only = detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered);
+  EXPECT_FALSE(on_only.moved);
+  EXPECT_EQ(on_only.kept, kBatchLanes);
+  EXPECT_TRUE(on_only.on_curve);
   EXPECT_EQ(on_queue.size + off_queue.size, 0u);
   on_queue.size = off_queue.size = 0;
 }

@@ -81,12 +81,12 @@ bool seed_and_decide(const PlanData& plan, const Point* points, LaneRows rows, s
   fast_path_seed(plan, points, rows, count, options, w, clock);
   if (!sorts_by_kind(plan, options)) return decide_lanes(plan, rows, count, false, options, w, clock, b_formed, stages);
   std::array<PointResult*, kBatchLanes> gathered;
-  bool on_curve = false;
-  const std::size_t kept = sort_by_kind(count, rows, w, gathered, on_curve);
+  const KindSort sorted = sort_by_kind(count, rows, w, gathered);
   clock.lap(&StageSeconds::read_out);
-  if (kept == count) return decide_lanes(plan, rows, count, on_curve, options, w, clock, b_formed, stages);
-  // Lanes moved down no longer have their B in w.B: those the SVD path takes form theirs.
-  return kept > 0 && decide_lanes(plan, LaneRows(gathered.data()), kept, on_curve, options, w, clock, false, stages);
+  if (!sorted.moved) return decide_lanes(plan, rows, count, sorted.on_curve, options, w, clock, b_formed, stages);
+  // Lanes moved no longer have their B in w.B: those the SVD path takes form theirs.
+  return sorted.kept > 0 &&
+         decide_lanes(plan, LaneRows(gathered.data()), sorted.kept, sorted.on_curve, options, w, clock, false, stages);
 }
 
 // One batch through the stages, but for the lanes left waiting in this thread's queues.
@@ -186,7 +186,10 @@ void invert_batch(const PlanData& plan, const Point* points, PointResult* result
                   const InvertOptions& options, StageSeconds* stages) {
   with_queues(plan, count, options, stages,
               [&] { return invert_batch_lanes(plan, points, results, count, options, stages); });
-  if (sorts_by_kind(plan, options)) run_queues(plan, options, stages, kBatchLanes);
+  if (sorts_by_kind(plan, options) && (seed_queue().size >= kBatchLanes ||
+                                       kind_queue(LaneKind::on_curve).size >= kBatchLanes ||
+                                       kind_queue(LaneKind::off_curve).size >= kBatchLanes))
+    run_queues(plan, options, stages, kBatchLanes);
 }
 
 void flush_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages) {

@@ -82,20 +82,9 @@ LaneKind kind_of(const BatchWorkspace& w, std::size_t l) {
 
 }  // namespace
 
-std::size_t sort_by_kind(std::size_t count, LaneRows batch_rows, BatchWorkspace& w,
-                         std::array<PointResult*, kBatchLanes>& rows, bool& on_curve) {
+KindSort sort_mixed_batch(std::size_t count, LaneRows batch_rows, BatchWorkspace& w,
+                          std::array<PointResult*, kBatchLanes>& rows) {
   static_assert(kBatchLanes == 64, "a batch's lanes as the bits of one word");
-  // Most batches are of one kind: told first over the estimates alone, four independent sums
-  // (one would chain every lane's add to the last; a lane no longer active counts as its
-  // estimate says, the loop after tells exactly).
-  std::array<std::size_t, 4> above{};
-  std::size_t l = 0;
-  for (; l + 4 <= count; l += 4)
-    for (std::size_t j = 0; j < 4; ++j) above[j] += w.estimate[l + j] > kOnCurveEstimate;
-  for (; l < count; ++l) above[0] += w.estimate[l] > kOnCurveEstimate;
-  const std::size_t off_estimates = above[0] + above[1] + above[2] + above[3];
-  on_curve = off_estimates == 0;
-  if (off_estimates == 0 || off_estimates == count) return count;
   // The lanes of each kind as bits: the loops below visit the set bits alone, without a branch
   // per lane (the kinds are often mixed at random).
   std::uint64_t on = 0, off = 0;
@@ -104,16 +93,34 @@ std::size_t sort_by_kind(std::size_t count, LaneRows batch_rows, BatchWorkspace&
     on |= (active & (is_off ^ 1)) << l;
     off |= (active & is_off) << l;
   }
-  if (on == 0 || off == 0) return count;  // inactive lanes made it look mixed
+  if (on == 0 || off == 0) return {.kept = count};  // inactive lanes made it look mixed
   const std::size_t on_lanes = static_cast<std::size_t>(std::popcount(on));
   const std::size_t off_lanes = static_cast<std::size_t>(std::popcount(off));
-  // Few of one kind: the others stay, compacted, in a batch nearly as full (only those few go).
+  // Which lanes stay, compacted. Few of one kind: the others, in a batch nearly as full (only
+  // those few go). Else a kind whose queue holds enough to fill the batch with its lanes, the kind
+  // more numerous in the batch first: its lanes stay and the queue's first ones join them, so
+  // that they skip the queue's two copies. Else none: every lane leaves.
   std::uint64_t stays = 0;
+  KindQueue* joins = nullptr;
+  bool on_curve = false;
+  const bool more_on = on_lanes > off_lanes;
   if (std::min(on_lanes, off_lanes) <= kKindStaysAbove) {
-    std::uint64_t& many = on_lanes > off_lanes ? on : off;
-    on_curve = on_lanes > off_lanes;
+    std::uint64_t& many = more_on ? on : off;
+    on_curve = more_on;
     stays = many;
     many = 0;
+  } else {
+    for (const LaneKind kind : {more_on ? LaneKind::on_curve : LaneKind::off_curve,
+                                more_on ? LaneKind::off_curve : LaneKind::on_curve}) {
+      std::uint64_t& lanes = kind == LaneKind::on_curve ? on : off;
+      KindQueue& queue = kind_queue(kind);
+      if (queue.size + static_cast<std::size_t>(std::popcount(lanes)) < kBatchLanes) continue;
+      on_curve = kind == LaneKind::on_curve;
+      stays = lanes;
+      lanes = 0;
+      joins = &queue;
+      break;
+    }
   }
   const auto leave = [&](std::uint64_t lanes, KindQueue& queue) {
     std::size_t k = queue.size;
@@ -136,15 +143,21 @@ std::size_t sort_by_kind(std::size_t count, LaneRows batch_rows, BatchWorkspace&
     w.active[kept] = 1;
     rows[kept] = &batch_rows[l];
   }
-  return kept;
+  if (joins != nullptr) {
+    take_from_queue(*joins, kBatchLanes - kept, w, rows, kept);
+    kept = kBatchLanes;
+  }
+  return {.moved = true, .kept = kept, .on_curve = on_curve};
 }
 
-void take_from_queue(KindQueue& queue, std::size_t m, BatchWorkspace& w, std::array<PointResult*, kBatchLanes>& rows) {
+void take_from_queue(KindQueue& queue, std::size_t m, BatchWorkspace& w, std::array<PointResult*, kBatchLanes>& rows,
+                     std::size_t first_lane) {
   for (std::size_t k = 0; k < m; ++k) {
-    w.u[k] = queue.u[k], w.v[k] = queue.v[k];
-    w.t_algebraic[k] = queue.t_algebraic[k], w.defect[k] = queue.defect[k], w.estimate[k] = queue.estimate[k];
-    w.active[k] = 1;
-    rows[k] = queue.target[k];
+    const std::size_t l = first_lane + k;
+    w.u[l] = queue.u[k], w.v[l] = queue.v[k];
+    w.t_algebraic[l] = queue.t_algebraic[k], w.defect[l] = queue.defect[k], w.estimate[l] = queue.estimate[k];
+    w.active[l] = 1;
+    rows[l] = queue.target[k];
   }
   const std::size_t rest = queue.size - m;
   for (std::size_t k = 0; k < rest; ++k) {

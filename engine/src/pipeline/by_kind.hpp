@@ -20,6 +20,7 @@
 
 #include "bezinv/invert.hpp"
 #include "plan_data.hpp"
+#include "pipeline/fast_path.hpp"
 #include "pipeline/workspace.hpp"
 
 namespace bezinv::detail {
@@ -75,16 +76,40 @@ void take_from_seed_queue(std::size_t m, BatchWorkspace& w, std::array<Point, kB
 bool sorts_by_kind(const PlanData& plan, const InvertOptions& options);
 
 // Where the batch's active lanes 0..count are of both kinds, they go to their kind's queue, but
-// for those of a kind with more than kBatchLanes - kKindStaysAbove lanes in the batch: those are
-// compacted to w's lanes 0..kept, rows[k] where kept lane k answers (lanes no longer active are
-// dropped). Lane l of the batch answers in batch_rows[l]. Returns kept: count where the batch is
-// of one kind and left as it is, 0 where every lane left. on_curve: whether every lane kept has
-// an estimate of at most kOnCurveEstimate (fast_path_decide need not tell them apart again).
-std::size_t sort_by_kind(std::size_t count, LaneRows batch_rows, BatchWorkspace& w,
-                         std::array<PointResult*, kBatchLanes>& rows, bool& on_curve);
+// for those of one kind that stay: a kind with more than kBatchLanes - kKindStaysAbove lanes in
+// the batch, or one whose queue can fill the batch with them (its first lanes then join them).
+// Those are compacted to w's lanes 0..kept, rows[k] where kept lane k answers (lanes no longer
+// active are dropped). Lane l of the batch answers in batch_rows[l].
+struct KindSort {
+  bool moved = false;      // lanes left or moved: the kept ones answer in `rows`; else the batch is as it was
+  std::size_t kept = 0;    // w's lanes 0..kept go on (0: every lane left)
+  bool on_curve = false;   // every one's estimate is at most kOnCurveEstimate (fast_path_decide's hint)
+};
+KindSort sort_by_kind(std::size_t count, LaneRows batch_rows, BatchWorkspace& w,
+                      std::array<PointResult*, kBatchLanes>& rows);
 
-// Puts the queue's first m lanes (m <= kBatchLanes) into w's lanes 0..m as active lanes, their rows
-// in `rows`, and moves the rest of the queue to its front.
-void take_from_queue(KindQueue& queue, std::size_t m, BatchWorkspace& w, std::array<PointResult*, kBatchLanes>& rows);
+// sort_by_kind past its first test, for a batch whose estimates are of both kinds.
+KindSort sort_mixed_batch(std::size_t count, LaneRows batch_rows, BatchWorkspace& w,
+                          std::array<PointResult*, kBatchLanes>& rows);
+
+// Most batches are of one kind: told first, inline, over the estimates alone, with four
+// independent sums (one would chain every lane's add to the last). A lane no longer active counts
+// as its estimate says; sort_mixed_batch tells exactly.
+inline KindSort sort_by_kind(std::size_t count, LaneRows batch_rows, BatchWorkspace& w,
+                             std::array<PointResult*, kBatchLanes>& rows) {
+  std::array<std::size_t, 4> above{};
+  std::size_t l = 0;
+  for (; l + 4 <= count; l += 4)
+    for (std::size_t j = 0; j < 4; ++j) above[j] += w.estimate[l + j] > kOnCurveEstimate;
+  for (; l < count; ++l) above[0] += w.estimate[l] > kOnCurveEstimate;
+  const std::size_t off_estimates = above[0] + above[1] + above[2] + above[3];
+  if (off_estimates == 0 || off_estimates == count) return {.kept = count, .on_curve = off_estimates == 0};
+  return sort_mixed_batch(count, batch_rows, w, rows);
+}
+
+// Puts the queue's first m lanes into w's lanes first_lane..first_lane + m (at most kBatchLanes) as
+// active lanes, their rows in `rows`, and moves the rest of the queue to its front.
+void take_from_queue(KindQueue& queue, std::size_t m, BatchWorkspace& w, std::array<PointResult*, kBatchLanes>& rows,
+                     std::size_t first_lane = 0);
 
 }  // namespace bezinv::detail
