@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "support/bits.hpp"
+#include "support/same_row.hpp"
 #include "support/curve_kinds.hpp"
 #include "bezinv/curve.hpp"
 #include "plan_data.hpp"
@@ -374,19 +375,6 @@ TEST(InvertProperty, ImproperCurvesAnswerEachPointAtItsParameterOnTheSegment) {
 // ---- the batched engine ----------------------------------------------------------------------------
 
 
-::testing::AssertionResult identical(const PointResult& a, const PointResult& b) {
-  if (same_bits(a.t, b.t) && same_bits(a.t2, b.t2) && same_bits(a.residual, b.residual) &&
-      same_bits(a.sigma_min, b.sigma_min) && same_bits(a.sigma_next, b.sigma_next) && a.status == b.status &&
-      a.path == b.path && std::strcmp(a.reason, b.reason) == 0)
-    return ::testing::AssertionSuccess();
-  std::ostringstream s;
-  s.precision(17);
-  s << "batched: " << to_string(a.status) << " t " << a.t << " t2 " << a.t2 << " residual " << a.residual
-    << " path " << to_string(a.path) << "; invert_point: " << to_string(b.status) << " t " << b.t << " t2 " << b.t2
-    << " residual " << b.residual << " path " << to_string(b.path);
-  return ::testing::AssertionFailure() << s.str();
-}
-
 TEST(InvertProperty, BatchedEqualsSinglePointBitForBit) {
   // Every fourth random case, with a mix of every kind of point (on, ends, extension, off, near).
   std::vector<const Case*> cases;
@@ -411,7 +399,7 @@ TEST(InvertProperty, BatchedEqualsSinglePointBitForBit) {
       std::vector<PointResult> batched(xy.size());
       invert(c.plan, xy, batched, {.threads = threads});
       for (std::size_t i = 0; i < xy.size(); ++i)
-        EXPECT_TRUE(identical(batched[i], single[i]))
+        EXPECT_TRUE(test_support::same_row(batched[i], single[i]))
             << c.name << ", threads " << threads << ", point " << i << " t_true "
             << (i < points.size() ? points[i].t : PointResult::nan);
     }
@@ -449,7 +437,7 @@ TEST(InvertProperty, BatchedEqualsSinglePointBitForBit) {
       invert(plans, curves, points, results, {.threads = threads});
       for (std::size_t i = 0; i < points.size(); ++i) {
         const PointResult expected = curves[i] < 0 ? untouched : invert_point(plans[curves[i]], points[i]);
-        EXPECT_TRUE(identical(results[i], expected))
+        EXPECT_TRUE(test_support::same_row(results[i], expected))
             << (curves[i] < 0 ? std::string("rejected row") : cases[curves[i]]->name) << ", threads " << threads
             << ", row " << i << " t_true " << all_t[(*order)[i]];
       }
@@ -493,7 +481,7 @@ TEST(InvertProperty, QueuedSvdLanesAnswerAsAlone) {
       std::vector<PointResult> batched(xy.size());
       invert(c.plan, xy, batched, {.threads = threads});
       for (std::size_t i = 0; i < xy.size(); ++i)
-        EXPECT_TRUE(identical(batched[i], single[i])) << c.name << ", threads " << threads << ", point " << i;
+        EXPECT_TRUE(test_support::same_row(batched[i], single[i])) << c.name << ", threads " << threads << ", point " << i;
     }
   }
   EXPECT_EQ(ran, kCases + 1);  // kCases ran (the next one ended the loop)
@@ -542,7 +530,7 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
       return;
     }
     if (fast.path != Path::bezout_lu) {
-      EXPECT_TRUE(identical(fast, svd)) << c.name;  // not answered by the fast path: the SVD path's row
+      EXPECT_TRUE(test_support::same_row(fast, svd)) << c.name;  // not answered by the fast path: the SVD path's row
       return;
     }
     ++fast_rows;
@@ -647,7 +635,7 @@ TEST(InvertProperty, TheFormulaPathAnswersAsTheBezoutPath) {
       formula_rows += formula[i].path == Path::formula;
       automatic_formula_rows += cubic && automatic[i].path == Path::formula;
       cubic_rows += cubic;
-      EXPECT_TRUE(identical(automatic[i], takes_formula ? formula[i] : bezout[i]))
+      EXPECT_TRUE(test_support::same_row(automatic[i], takes_formula ? formula[i] : bezout[i]))
           << "automatic: " << describe(c, k, automatic[i]) << "\nformula path taken: " << takes_formula;
       ASSERT_EQ(formula[i].status, bezout[i].status)
           << "formula: " << describe(c, k, formula[i]) << "\nbezout: " << describe(c, k, bezout[i]);

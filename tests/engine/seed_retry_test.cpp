@@ -23,17 +23,11 @@
 #include "isolation.hpp"
 #include "pipeline/seed_retry.hpp"
 #include "plan_data.hpp"
+#include "support/same_row.hpp"
 #include "support/sanitizers.hpp"
 
 namespace bezinv {
 namespace {
-
-// Whether two rows are the same, bit for bit (NaN equal to NaN).
-bool identical(const PointResult& a, const PointResult& b) {
-  auto same = [](double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); };
-  return a.status == b.status && a.path == b.path && same(a.t, b.t) && same(a.t2, b.t2) &&
-         same(a.residual, b.residual) && same(a.sigma_min, b.sigma_min) && same(a.sigma_next, b.sigma_next);
-}
 
 // The accuracy model's slack on n u scale (as in invert_property_test.cpp).
 constexpr double kUnitRoundoff = 0x1p-53;
@@ -93,7 +87,7 @@ TEST(SeedRetry, AnswersTheLanesWhoseSeedFellShortAsTheSvdPathDoes) {
     ASSERT_EQ(fast.status, svd.status) << "t0 " << r.known.t;
     EXPECT_EQ(fast.status, Status::ok) << "t0 " << r.known.t;
     if (fast.path != Path::bezout_lu) {
-      EXPECT_TRUE(identical(fast, svd)) << "t0 " << r.known.t;  // not retried successfully: the SVD path's row
+      EXPECT_TRUE(test_support::same_row(fast, svd)) << "t0 " << r.known.t;  // not retried successfully: the SVD path's row
       continue;
     }
     ++answered;
@@ -138,7 +132,7 @@ TEST(SeedRetry, AnswersTheLanesWhoseSeedFellShortAsTheSvdPathDoes) {
       std::vector<PointResult> batched(xy.size());
       invert(plan, xy, batched, {.threads = threads});
       for (std::size_t i = 0; i < xy.size(); ++i)
-        EXPECT_TRUE(identical(batched[i], single[i])) << "threads " << threads << ", point " << i;
+        EXPECT_TRUE(test_support::same_row(batched[i], single[i])) << "threads " << threads << ", point " << i;
     }
   }
 }
