@@ -75,10 +75,11 @@ bool decide_lanes(const PlanData& plan, LaneRows rows, std::size_t count, bool o
 
 // The fast path from the seed on for w's lanes 0..count (their points, as given, in `points`):
 // the seed, then the lanes sorted by kind where the plan's are (by_kind.hpp), then decide_lanes.
+// far: the lanes far from the segment, where known.
 bool seed_and_decide(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
                      const InvertOptions& options, BatchWorkspace& w, StageClock& clock, bool b_formed,
-                     StageSeconds* stages) {
-  fast_path_seed(plan, points, rows, count, options, w, clock);
+                     StageSeconds* stages, FarLanes far) {
+  fast_path_seed(plan, points, rows, count, options, w, clock, far);
   if (!sorts_by_kind(plan, options)) return decide_lanes(plan, rows, count, false, options, w, clock, b_formed, stages);
   std::array<PointResult*, kBatchLanes> gathered;
   const KindSort sorted = sort_by_kind(count, rows, w, gathered);
@@ -107,12 +108,15 @@ bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
     }
     return route_undecided(plan, rows, count, options, w, clock, !formed_b, stages);
   }
-  if (sorts_by_kind(plan, options) &&
-      set_aside_far(plan, normalized_tolerance(plan, options), points, results, count, w)) {
-    clock.lap(&StageSeconds::read_out);
-    return false;
+  FarLanes far;
+  if (sorts_by_kind(plan, options)) {
+    far = far_lanes(plan, normalized_tolerance(plan, options), count, w);
+    if (set_aside_far(far, points, results, count, w)) {
+      clock.lap(&StageSeconds::read_out);
+      return false;
+    }
   }
-  return seed_and_decide(plan, points, rows, count, options, w, clock, !formed_b, stages);
+  return seed_and_decide(plan, points, rows, count, options, w, clock, !formed_b, stages, far);
 }
 
 // The first m lanes of the seed queue (by_kind.hpp), as a batch before its seed.
@@ -123,8 +127,10 @@ bool invert_seed_queue(const PlanData& plan, std::size_t m, const InvertOptions&
   std::array<PointResult*, kBatchLanes> rows;
   take_from_seed_queue(m, w, points, rows);
   clock.lap(&StageSeconds::form_b);
+  // Its lanes are all near the segment (set_aside_far sent them), so not one is far.
+  const FarLanes far{.known = skips_far_seeds(plan, normalized_tolerance(plan, options)), .bits = 0};
   return seed_and_decide(plan, points.data(), LaneRows(rows.data()), m, options, w, clock, /*b_formed=*/false,
-                         stages);
+                         stages, far);
 }
 
 // The first m lanes of a kind's queue (by_kind.hpp), as a batch after its seed.

@@ -21,15 +21,21 @@ SeedQueue& seed_queue() {
   return queue;
 }
 
-bool set_aside_far(const PlanData& plan, double tolerance, const Point* points, PointResult* results,
-                   std::size_t count, const BatchWorkspace& w) {
-  if (!skips_far_seeds(plan, tolerance)) return false;
-  std::uint64_t far = 0, near = 0;
-  for (std::size_t l = 0; l < count; ++l) {
-    const std::uint64_t is_far = segment_far(plan, w.u[l], w.v[l]), active = w.active[l];
-    far |= (active & is_far) << l;
-    near |= (active & (is_far ^ 1)) << l;
-  }
+FarLanes far_lanes(const PlanData& plan, double tolerance, std::size_t count, const BatchWorkspace& w) {
+  static_assert(kBatchLanes == 64, "a batch's lanes as the bits of one word");
+  if (!skips_far_seeds(plan, tolerance)) return {};
+  FarLanes far{.known = true};
+  for (std::size_t l = 0; l < count; ++l)
+    far.bits |= static_cast<std::uint64_t>(segment_far(plan, w.u[l], w.v[l])) << l;
+  return far;
+}
+
+bool set_aside_far(FarLanes far_from_segment, const Point* points, PointResult* results, std::size_t count,
+                   const BatchWorkspace& w) {
+  if (!far_from_segment.known) return false;
+  std::uint64_t active = 0;
+  for (std::size_t l = 0; l < count; ++l) active |= static_cast<std::uint64_t>(w.active[l]) << l;
+  std::uint64_t far = far_from_segment.bits & active, near = active & ~far_from_segment.bits;
   if (far == 0 || near == 0) return false;
   KindQueue& off = kind_queue(LaneKind::off_curve);
   const double inf = std::numeric_limits<double>::infinity();

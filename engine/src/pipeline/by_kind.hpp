@@ -58,12 +58,15 @@ struct SeedQueue {
 // This thread's seed queue.
 SeedQueue& seed_queue();
 
-// Where the plan's formed seed leaves far lanes unseeded (tolerance normalized) and the batch's
-// active lanes 0..count are both far and near: the far ones go to the off-curve queue, t NaN and
-// defect and estimate +inf (as formed_seed leaves them), the near ones to the seed queue; lane l
-// answers in results[l]. Returns whether they left (none stays in the batch).
-bool set_aside_far(const PlanData& plan, double tolerance, const Point* points, PointResult* results,
-                   std::size_t count, const BatchWorkspace& w);
+// The batch's lanes 0..count far from the segment, where the plan's formed seed leaves such lanes
+// unseeded (skips_far_seeds, tolerance normalized); not known elsewhere.
+FarLanes far_lanes(const PlanData& plan, double tolerance, std::size_t count, const BatchWorkspace& w);
+
+// Where the batch's active lanes are both far and near (far known): the far ones go to the
+// off-curve queue, t NaN and defect and estimate +inf (as formed_seed leaves them), the near ones
+// to the seed queue; lane l answers in results[l]. Returns whether they left (none stays).
+bool set_aside_far(FarLanes far, const Point* points, PointResult* results, std::size_t count,
+                   const BatchWorkspace& w);
 
 // Puts the seed queue's first m lanes (m <= kBatchLanes) into w's lanes 0..m as active lanes, their
 // points in `points` and rows in `rows`, and moves the rest of the queue to its front.

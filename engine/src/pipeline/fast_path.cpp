@@ -69,7 +69,7 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
 // the seeded lanes' t is read from their compacted z, and no z goes back to w.z (nothing after the
 // read-out uses a seed's z: the pair check's comes from the full kernel).
 bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, BatchWorkspace& w,
-                 std::array<double, kBatchLanes>& poison) {
+                 std::array<double, kBatchLanes>& poison, FarLanes far) {
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
   const kernels::Implementation& kernel = kernels::active_implementation();
@@ -77,7 +77,8 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
   std::size_t seeded = 0;
   if (skips_far_seeds(plan, tolerance)) {
     for (std::size_t l = 0; l < count; ++l)
-      if (!segment_far(plan, w.u[l], w.v[l])) seeded_of[seeded++] = static_cast<std::uint8_t>(l);
+      if (far.known ? !((far.bits >> l) & 1) : !segment_far(plan, w.u[l], w.v[l]))
+        seeded_of[seeded++] = static_cast<std::uint8_t>(l);
   } else {
     seeded = count;
   }
@@ -241,7 +242,7 @@ bool takes_two_passes(const PlanData& plan, bool formula) { return plan.degree >
 }  // namespace
 
 void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
-                    const InvertOptions& options, BatchWorkspace& w, StageClock& clock) {
+                    const InvertOptions& options, BatchWorkspace& w, StageClock& clock, FarLanes far) {
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
   const double tolerance = normalized_tolerance(plan, options);
@@ -255,7 +256,7 @@ void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, st
     clock.lap(&StageSeconds::kernel);
   } else if (formed_b) {
     std::array<double, kBatchLanes> poison;
-    read_out = !formed_seed(plan, count, tolerance, w, poison);
+    read_out = !formed_seed(plan, count, tolerance, w, poison, far);
     mark_overflowing_b(plan, points, poison.data(), count, w, rows);
   } else if (two_passes) {
     kernel.null_vector_seed(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),

@@ -10,6 +10,7 @@
 //                   segment but not certified, or off the curve and proved the nearest point)
 //                   go through the full kernel and decide_with_gap.
 #include <cstddef>
+#include <cstdint>
 
 #include "bezinv/invert.hpp"
 #include "plan_data.hpp"
@@ -41,6 +42,14 @@ inline bool skips_far_seeds(const PlanData& plan, double tolerance) {
   return !plan.segment_far_near.empty() && tolerance <= 0.25 * plan.segment_far_reach;
 }
 
+// The batch's lanes far from the segment (segment_far, all lanes), as bits, where skips_far_seeds
+// holds and the caller has told them already (by_kind.hpp); else not known, and formed_seed tells
+// them itself.
+struct FarLanes {
+  bool known = false;
+  std::uint64_t bits = 0;
+};
+
 // Whether stage 1 leaves the batch's B unformed: the seed forms it, or the formula path needs it
 // for few lanes (formula_path.hpp). The lanes that reach the SVD path then form theirs.
 bool forms_b_late(const PlanData& plan, const InvertOptions& options);
@@ -53,7 +62,7 @@ inline constexpr double kOnCurveEstimate = 1e-12;
 // Stage 2 and the read-out for the batch's active lanes: w.t_algebraic (NaN where the seed did
 // not settle), w.defect and w.estimate per lane (with degree 2's w.z, w.second and sigma_next).
 void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
-                    const InvertOptions& options, BatchWorkspace& w, StageClock& clock);
+                    const InvertOptions& options, BatchWorkspace& w, StageClock& clock, FarLanes far = {});
 
 // Stages 3-4, the refinement and the decisions it allows, for w's lanes 0..count as
 // fast_path_seed left them (or as by_kind.hpp's queue puts them back); lane l's answer goes to
