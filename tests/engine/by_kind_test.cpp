@@ -1,10 +1,10 @@
-// Lanes by kind (engine/src/pipeline/by_kind.hpp): where a batch holds points on the curve and
-// points off it, the lanes leave for per-thread queues of their kind and are decided in batches
-// gathered from several; far from a high-degree curve, the far lanes leave before the seed and the
-// near ones are seeded in a batch of their own. None of it may change an answer: every row of a
-// mixed file must be the row its point gets alone (invert_point, a batch of one, never queued), bit
-// for bit, on one thread and two, whatever the arrangement of the kinds; and the sorting itself
-// must put each lane where its kind says.
+// Lanes by kind before the seed (engine/src/pipeline/by_kind.hpp): far from a high-degree curve, a
+// batch's lanes far from the segment leave for a per-thread far queue and its near ones for a seed
+// queue, each decided in batches gathered from several. None of it may change an answer: every row
+// of a mixed file must be the row its point gets alone (invert_point, a batch of one, never
+// queued), bit for bit, on one thread and two, whatever the arrangement of the kinds (at every
+// degree, those that sort and those that do not); and the sorting itself must put each lane where
+// segment_far says.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,7 +19,10 @@
 #include "bezinv/datasets/random_curve.hpp"
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
+#include "bezinv/tolerances.hpp"
+#include "isolation.hpp"
 #include "pipeline/by_kind.hpp"
+#include "plan_data.hpp"
 #include "pipeline/fast_path.hpp"
 #include "pipeline/workspace.hpp"
 #include "support/same_row.hpp"
@@ -82,100 +85,72 @@ TEST(LanesByKind, EveryRowOfAMixedFileIsThePointsRowAlone) {
   EXPECT_GT(rows, 0u);
 }
 
-// sort_by_kind on a batch made by hand: which lanes stay, which leave for which queue, in order.
-TEST(LanesByKind, SortPutsEachLaneWhereItsKindSays) {
+// set_aside_far on a batch of a degree-16 curve: points on it (near) and 1e-2 of the diagonal off
+// it (far from the segment, as segment_far tells), which lanes go to which queue, in order.
+TEST(LanesByKind, SetAsideSendsFarLanesToTheFarQueueAndNearOnesToTheSeedQueue) {
   using detail::kBatchLanes;
+  std::mt19937_64 rng(5300);
+  const Curve curve =
+      datasets::random_curve(CurveKind::rational_bezier, 16, rng, datasets::ControlPolygon::perturbed_arc);
+  const InversionPlan plan = make_plan(curve);
+  const detail::PlanData& data = detail::plan_data(plan);
+  const double tolerance = kDefaultRelativeTolerance * plan.diagonal() / data.scale;
+  ASSERT_TRUE(detail::skips_far_seeds(data, tolerance)) << "the test needs a plan whose seed skips far lanes";
+  const std::vector<Point> points = mixed_points(curve, plan.diagonal(), 1e-2, Arrangement::random, kBatchLanes, rng);
   detail::BatchWorkspace& w = detail::batch_workspace();
-  detail::KindQueue& on_queue = detail::kind_queue(detail::LaneKind::on_curve);
-  detail::KindQueue& off_queue = detail::kind_queue(detail::LaneKind::off_curve);
+  for (std::size_t l = 0; l < kBatchLanes; ++l) {
+    const auto uv = data.normalize(points[l].x, points[l].y);
+    w.u[l] = uv[0], w.v[l] = uv[1];
+    w.active[l] = l != 7;  // one lane answered already
+  }
+  const detail::FarLanes far = detail::far_lanes(data, tolerance, kBatchLanes, w);
+  ASSERT_TRUE(far.known);
+  std::vector<std::size_t> far_of, near_of;
+  for (std::size_t l = 0; l < kBatchLanes; ++l) {
+    ASSERT_EQ((far.bits >> l) & 1, detail::segment_far(data, w.u[l], w.v[l]) ? 1u : 0u) << l;
+    if (l == 7) continue;
+    ((far.bits >> l) & 1 ? far_of : near_of).push_back(l);
+  }
+  ASSERT_GT(far_of.size(), 8u);
+  ASSERT_GT(near_of.size(), 8u);
+
   std::array<PointResult, kBatchLanes> results{};
-  const double inf = std::numeric_limits<double>::infinity();
-  // Lane l: u = l; off the curve where `off(l)`; lane 7 no longer active.
-  auto fill = [&](auto off) {
-    for (std::size_t l = 0; l < kBatchLanes; ++l) {
-      w.u[l] = static_cast<double>(l), w.v[l] = -static_cast<double>(l);
-      w.t_algebraic[l] = 0.5, w.defect[l] = 1e-9;
-      w.estimate[l] = off(l) ? (l % 3 == 0 ? inf : 1e-6) : (l % 5 == 0 ? 0.0 : 1e-15);
-      w.active[l] = l != 7;
-    }
-  };
-  std::array<PointResult*, kBatchLanes> gathered;
-  
-  // Half and half: every active lane leaves for its kind's queue, in order.
-  on_queue.size = off_queue.size = 0;
-  fill([](std::size_t l) { return l % 2 == 1; });
-  const detail::KindSort all_leave = detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered);
-  EXPECT_TRUE(all_leave.moved);
-  EXPECT_EQ(all_leave.kept, 0u);
-  ASSERT_EQ(on_queue.size, kBatchLanes / 2);
-  ASSERT_EQ(off_queue.size, kBatchLanes / 2 - 1);  // lane 7 stays behind, answered already
-  for (std::size_t k = 0; k < on_queue.size; ++k) {
-    EXPECT_EQ(on_queue.u[k], 2.0 * k);
-    EXPECT_EQ(on_queue.target[k], &results[2 * k]);
+  detail::SeedQueue& seeds = detail::seed_queue();
+  detail::FarQueue& far_lanes = detail::far_queue();
+  seeds.size = far_lanes.size = 3;  // lanes already waiting stay first
+  ASSERT_TRUE(detail::set_aside_far(far, points.data(), results.data(), kBatchLanes, w));
+  ASSERT_EQ(far_lanes.size, 3 + far_of.size());
+  ASSERT_EQ(seeds.size, 3 + near_of.size());
+  for (std::size_t k = 0; k < far_of.size(); ++k) {
+    EXPECT_EQ(far_lanes.u[3 + k], w.u[far_of[k]]);
+    EXPECT_EQ(far_lanes.v[3 + k], w.v[far_of[k]]);
+    EXPECT_EQ(far_lanes.target[3 + k], &results[far_of[k]]);
   }
-  for (std::size_t k = 0; k < off_queue.size; ++k) {
-    const std::size_t l = k < 3 ? 2 * k + 1 : 2 * k + 3;  // 1, 3, 5, then 9, 11, ...
-    EXPECT_EQ(off_queue.u[k], static_cast<double>(l));
-    EXPECT_EQ(off_queue.v[k], -static_cast<double>(l));
-    EXPECT_EQ(off_queue.estimate[k], w.estimate[l] == inf ? inf : 1e-6);
-    EXPECT_EQ(off_queue.target[k], &results[l]);
+  for (std::size_t k = 0; k < near_of.size(); ++k) {
+    EXPECT_EQ(seeds.u[3 + k], w.u[near_of[k]]);
+    EXPECT_EQ(seeds.point[3 + k].x, points[near_of[k]].x);
+    EXPECT_EQ(seeds.target[3 + k], &results[near_of[k]]);
   }
 
-  // Half and half again, with 40 lanes waiting on the curve: the batch's 32 stay, and the queue's
-  // first 32 join them; the off-curve lanes leave.
-  for (std::size_t k = 0; k < 40; ++k) on_queue.u[k] = 1000.0 + static_cast<double>(k);
-  on_queue.size = 40;
-  off_queue.size = 0;
-  fill([](std::size_t l) { return l % 2 == 1; });
-  std::array<PointResult*, 40> waiting;
-  std::copy_n(on_queue.target.begin(), 40, waiting.begin());
-  const detail::KindSort joined = detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered);
-  EXPECT_TRUE(joined.moved);
-  ASSERT_EQ(joined.kept, kBatchLanes);
-  EXPECT_TRUE(joined.on_curve);
-  EXPECT_EQ(off_queue.size, kBatchLanes / 2 - 1);
-  ASSERT_EQ(on_queue.size, 8u);
-  for (std::size_t k = 0; k < 8; ++k) EXPECT_EQ(on_queue.u[k], 1032.0 + static_cast<double>(k));
-  for (std::size_t k = 0; k < kBatchLanes; ++k) {
-    EXPECT_EQ(w.u[k], k < 32 ? 2.0 * k : 1000.0 + static_cast<double>(k - 32)) << k;
-    EXPECT_EQ(gathered[k], k < 32 ? &results[2 * k] : waiting[k - 32]) << k;
+  // A far queue's lanes come back as unseeded lanes, the rest of the queue moved to its front.
+  std::array<PointResult*, kBatchLanes> rows;
+  detail::take_from_far_queue(5, w, rows);
+  ASSERT_EQ(far_lanes.size, far_of.size() - 2);
+  for (std::size_t k = 0; k < 5; ++k) {
     EXPECT_EQ(w.active[k], 1);
+    EXPECT_TRUE(std::isnan(w.t_algebraic[k]));
+    EXPECT_EQ(w.estimate[k], std::numeric_limits<double>::infinity());
   }
+  EXPECT_EQ(rows[3], &results[far_of[0]]);
+  EXPECT_EQ(far_lanes.target[0], &results[far_of[2]]);
 
-  // Few off the curve (kKindStaysAbove): they leave; the others stay, compacted, in order.
-  on_queue.size = off_queue.size = 0;
-  fill([](std::size_t l) { return l == 10 || l == 40; });
-  const detail::KindSort few = detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered);
-  const std::size_t kept = few.kept;
-  EXPECT_TRUE(few.moved);
-  EXPECT_TRUE(few.on_curve);
-  ASSERT_EQ(kept, kBatchLanes - 3);  // less lane 7, 10 and 40
-  EXPECT_EQ(on_queue.size, 0u);
-  ASSERT_EQ(off_queue.size, 2u);
-  EXPECT_EQ(off_queue.target[0], &results[10]);
-  EXPECT_EQ(off_queue.target[1], &results[40]);
-  for (std::size_t k = 0, l = 0; k < kept; ++k, ++l) {
-    while (l == 7 || l == 10 || l == 40) ++l;
-    EXPECT_EQ(w.u[k], static_cast<double>(l));
-    EXPECT_EQ(gathered[k], &results[l]);
-    EXPECT_EQ(w.active[k], 1);
+  // A batch all near, or all far, stays as it is.
+  seeds.size = far_lanes.size = 0;
+  for (const bool far_only : {false, true}) {
+    for (std::size_t l = 0; l < kBatchLanes; ++l) w.active[l] = ((far.bits >> l) & 1) == far_only;
+    EXPECT_FALSE(detail::set_aside_far(far, points.data(), results.data(), kBatchLanes, w));
+    EXPECT_EQ(seeds.size + far_lanes.size, 0u);
   }
-
-  // One kind only (lane 7 apart): the batch is left as it is.
-  on_queue.size = off_queue.size = 0;
-  fill([](std::size_t) { return true; });
-  const detail::KindSort off_only = detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered);
-  EXPECT_FALSE(off_only.moved);
-  EXPECT_EQ(off_only.kept, kBatchLanes);
-  EXPECT_FALSE(off_only.on_curve);
-  EXPECT_EQ(on_queue.size + off_queue.size, 0u);
-  fill([](std::size_t) { return false; });
-  const detail::KindSort on_only = detail::sort_by_kind(kBatchLanes, detail::LaneRows(results.data()), w, gathered);
-  EXPECT_FALSE(on_only.moved);
-  EXPECT_EQ(on_only.kept, kBatchLanes);
-  EXPECT_TRUE(on_only.on_curve);
-  EXPECT_EQ(on_queue.size + off_queue.size, 0u);
-  on_queue.size = off_queue.size = 0;
 }
 
 }  // namespace

@@ -65,29 +65,11 @@ bool route_undecided(const PlanData& plan, LaneRows rows, std::size_t count, con
 }
 
 // The fast path's stages after the seed, then the SVD path's routing, for w's lanes 0..count.
-// on_curve: every lane's estimate is known to be at most kOnCurveEstimate.
-bool decide_lanes(const PlanData& plan, LaneRows rows, std::size_t count, bool on_curve, const InvertOptions& options,
+bool decide_lanes(const PlanData& plan, LaneRows rows, std::size_t count, const InvertOptions& options,
                   BatchWorkspace& w, StageClock& clock, bool b_formed, StageSeconds* stages) {
-  fast_path_decide(plan, rows, count, on_curve, options, w, clock);
+  fast_path_decide(plan, rows, count, options, w, clock);
   off_curve_path(plan, options, count, w, rows, clock);
   return route_undecided(plan, rows, count, options, w, clock, b_formed, stages);
-}
-
-// The fast path from the seed on for w's lanes 0..count (their points, as given, in `points`):
-// the seed, then the lanes sorted by kind where the plan's are (by_kind.hpp), then decide_lanes.
-// far: the lanes far from the segment, where known.
-bool seed_and_decide(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
-                     const InvertOptions& options, BatchWorkspace& w, StageClock& clock, bool b_formed,
-                     StageSeconds* stages, FarLanes far) {
-  fast_path_seed(plan, points, rows, count, options, w, clock, far);
-  if (!sorts_by_kind(plan, options)) return decide_lanes(plan, rows, count, false, options, w, clock, b_formed, stages);
-  std::array<PointResult*, kBatchLanes> gathered;
-  const KindSort sorted = sort_by_kind(count, rows, w, gathered);
-  clock.lap(&StageSeconds::read_out);
-  if (!sorted.moved) return decide_lanes(plan, rows, count, sorted.on_curve, options, w, clock, b_formed, stages);
-  // Lanes moved no longer have their B in w.B: those the SVD path takes form theirs.
-  return sorted.kept > 0 &&
-         decide_lanes(plan, LaneRows(gathered.data()), sorted.kept, sorted.on_curve, options, w, clock, false, stages);
 }
 
 // One batch through the stages, but for the lanes left waiting in this thread's queues.
@@ -109,14 +91,15 @@ bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
     return route_undecided(plan, rows, count, options, w, clock, !formed_b, stages);
   }
   FarLanes far;
-  if (sorts_by_kind(plan, options)) {
+  if (sets_far_lanes_aside(plan, options)) {
     far = far_lanes(plan, normalized_tolerance(plan, options), count, w);
     if (set_aside_far(far, points, results, count, w)) {
       clock.lap(&StageSeconds::read_out);
       return false;
     }
   }
-  return seed_and_decide(plan, points, rows, count, options, w, clock, !formed_b, stages, far);
+  fast_path_seed(plan, points, rows, count, options, w, clock, far);
+  return decide_lanes(plan, rows, count, options, w, clock, !formed_b, stages);
 }
 
 // The first m lanes of the seed queue (by_kind.hpp), as a batch before its seed.
@@ -124,25 +107,23 @@ bool invert_seed_queue(const PlanData& plan, std::size_t m, const InvertOptions&
   BatchWorkspace& w = batch_workspace();
   StageClock clock(stages);
   std::array<Point, kBatchLanes> points;
-  std::array<PointResult*, kBatchLanes> rows;
-  take_from_seed_queue(m, w, points, rows);
+  std::array<PointResult*, kBatchLanes> gathered;
+  take_from_seed_queue(m, w, points, gathered);
   clock.lap(&StageSeconds::form_b);
   // Its lanes are all near the segment (set_aside_far sent them), so not one is far.
-  const FarLanes far{.known = skips_far_seeds(plan, normalized_tolerance(plan, options)), .bits = 0};
-  return seed_and_decide(plan, points.data(), LaneRows(rows.data()), m, options, w, clock, /*b_formed=*/false,
-                         stages, far);
+  const LaneRows rows(gathered.data());
+  fast_path_seed(plan, points.data(), rows, m, options, w, clock, FarLanes{.known = true, .bits = 0});
+  return decide_lanes(plan, rows, m, options, w, clock, /*b_formed=*/false, stages);
 }
 
-// The first m lanes of a kind's queue (by_kind.hpp), as a batch after its seed.
-bool invert_queued_lanes(const PlanData& plan, KindQueue& queue, std::size_t m, const InvertOptions& options,
-                         StageSeconds* stages) {
+// The first m lanes of the far queue (by_kind.hpp), as a batch after its seed.
+bool invert_far_queue(const PlanData& plan, std::size_t m, const InvertOptions& options, StageSeconds* stages) {
   BatchWorkspace& w = batch_workspace();
   StageClock clock(stages);
-  std::array<PointResult*, kBatchLanes> rows;
-  take_from_queue(queue, m, w, rows);
+  std::array<PointResult*, kBatchLanes> gathered;
+  take_from_far_queue(m, w, gathered);
   clock.lap(&StageSeconds::read_out);
-  return decide_lanes(plan, LaneRows(rows.data()), m, &queue == &kind_queue(LaneKind::on_curve), options, w, clock,
-                      /*b_formed=*/false, stages);
+  return decide_lanes(plan, LaneRows(gathered.data()), m, options, w, clock, /*b_formed=*/false, stages);
 }
 
 // A batch's worth of lanes (count <= kBatchLanes, run by `lanes`), with this thread's pair-check
@@ -161,29 +142,20 @@ void with_queues(const PlanData& plan, std::size_t count, const InvertOptions& o
   }
 }
 
-// Runs the kind queues' lanes, a batch at a time, while at least `least` wait in one.
-void run_kind_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages, std::size_t least) {
-  for (const LaneKind kind : {LaneKind::on_curve, LaneKind::off_curve}) {
-    KindQueue& queue = kind_queue(kind);
-    while (queue.size > 0 && queue.size >= least) {
-      const std::size_t m = std::min(queue.size, kBatchLanes);
-      with_queues(plan, m, options, stages, [&] { return invert_queued_lanes(plan, queue, m, options, stages); });
-    }
-  }
-}
-
-// Runs the seed queue's lanes, a batch at a time, while at least `least` wait in it, then the kind
-// queues' (which the seed queue's batches fill), keeping each below kBatchLanes lanes between
-// batches (the room their capacity leaves for one more).
-void run_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages, std::size_t least) {
-  run_kind_queues(plan, options, stages, kBatchLanes);
+// Runs the seed queue's and the far queue's lanes, a batch at a time, while at least `least` wait
+// in one: each stays below kBatchLanes lanes between batches (the room their capacity leaves for
+// one more).
+void run_sorted_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages, std::size_t least) {
   SeedQueue& seeds = seed_queue();
   while (seeds.size > 0 && seeds.size >= least) {
     const std::size_t m = std::min(seeds.size, kBatchLanes);
     with_queues(plan, m, options, stages, [&] { return invert_seed_queue(plan, m, options, stages); });
-    run_kind_queues(plan, options, stages, kBatchLanes);
   }
-  run_kind_queues(plan, options, stages, least);
+  FarQueue& far = far_queue();
+  while (far.size > 0 && far.size >= least) {
+    const std::size_t m = std::min(far.size, kBatchLanes);
+    with_queues(plan, m, options, stages, [&] { return invert_far_queue(plan, m, options, stages); });
+  }
 }
 
 }  // namespace
@@ -192,21 +164,19 @@ void invert_batch(const PlanData& plan, const Point* points, PointResult* result
                   const InvertOptions& options, StageSeconds* stages) {
   with_queues(plan, count, options, stages,
               [&] { return invert_batch_lanes(plan, points, results, count, options, stages); });
-  if (sorts_by_kind(plan, options) && (seed_queue().size >= kBatchLanes ||
-                                       kind_queue(LaneKind::on_curve).size >= kBatchLanes ||
-                                       kind_queue(LaneKind::off_curve).size >= kBatchLanes))
-    run_queues(plan, options, stages, kBatchLanes);
+  if (seed_queue().size >= kBatchLanes || far_queue().size >= kBatchLanes)
+    run_sorted_queues(plan, options, stages, kBatchLanes);
 }
 
 void flush_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages) {
-  run_queues(plan, options, stages, 1);
+  run_sorted_queues(plan, options, stages, 1);
   flush_seed_retry_queue(plan, options, stages);
   flush_pair_check_queue(plan, options, stages);
   flush_svd_queue(plan, options, stages);
 }
 
 QueueScope::~QueueScope() {
-  seed_queue().size = kind_queue(LaneKind::on_curve).size = kind_queue(LaneKind::off_curve).size = 0;
+  seed_queue().size = far_queue().size = 0;
   seed_retry_queue().size = 0;
   svd_queue().size = 0;
   PairCheckQueue& pairs = pair_check_queue();

@@ -2,8 +2,8 @@
 // The pipeline's driver: one batch of points of one curve through its stages (docs/README.md):
 //   1. form B     normalize and admit the points, form B (form_b.hpp)
 //   2-4. fast path  null vector by inverse iteration, read-out, refinement, and the answers it
-//                 may give (fast_path.hpp); a batch of lanes on the curve and off it sorted by
-//                 kind after the seed, each kind through a per-thread queue (by_kind.hpp)
+//                 may give (fast_path.hpp); from degree 15, a batch's lanes far from the segment
+//                 and near it sorted before the seed, each through a per-thread queue (by_kind.hpp)
 //   2-4. seed retry the lanes near the curve whose seed fell short, through a per-thread queue
 //                 (seed_retry.hpp)
 //   2-5. SVD path  for the lanes still undecided, here or through the per-thread queue
@@ -22,7 +22,7 @@ namespace bezinv::detail {
 void invert_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                   const InvertOptions& options, StageSeconds* stages);
 
-// Answers every lane waiting in this thread's queues: the seed queue and the kind queues first, the
+// Answers every lane waiting in this thread's queues: the seed queue and the far queue first, the
 // seed retry and the pair check next (each may hand lanes to those after it), then the SVD queue. Called at the end of each range of batches, so a queue never
 // outlives the plan it was filled for.
 void flush_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages);

@@ -160,16 +160,16 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
 // batch. A seed that did not settle has no t and an infinite estimate (the seeds leave its residual
 // uncomputed): it is not in the on-curve lanes' groups, and, like every off-curve lane without a
 // start in [0, 1], it takes no place in nearest_newton's either (off the curve, most lanes).
-// on_curve: every lane's estimate is known to be at most kOnCurveEstimate (by_kind.hpp told it).
 [[gnu::noinline]] void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
-                                      bool formula, bool on_curve, BatchWorkspace& w) {
+                                      bool formula, BatchWorkspace& w) {
+  constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
   constexpr double kFormulaOffCurveDistance = 1e-10;
   const kernels::RationalCurve curve = kernel_curve(plan);
   kernels::NewtonSettings settings = kNewtonSettings;
   if (formula) settings.leave_distance = kFormulaOffCurveDistance;
   std::array<std::uint8_t, kBatchLanes> near_of, far_of;
-  std::size_t near = on_curve ? count : 0, far = 0;
-  for (std::size_t l = 0; l < count && !on_curve; ++l) {
+  std::size_t near = 0, far = 0;
+  for (std::size_t l = 0; l < count; ++l) {
     if (!(w.estimate[l] > kOnCurveEstimate)) near_of[near++] = static_cast<std::uint8_t>(l);
     else if (w.t_refined[l] >= 0.0 && w.t_refined[l] <= 1.0) far_of[far++] = static_cast<std::uint8_t>(l);
     else w.distance[l] = PointResult::nan;  // as nearest_newton would give it back
@@ -191,10 +191,8 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
     }
   }
   if (left > 0)  // the lanes rational_newton left (their t unmoved) join the others
-    for (std::size_t k = 0; k < near; ++k) {
-      const std::uint8_t l = near == count ? static_cast<std::uint8_t>(k) : near_of[k];
-      if (w.distance[l] == std::numeric_limits<double>::infinity()) far_of[far++] = l;
-    }
+    for (std::size_t k = 0; k < near; ++k)
+      if (w.distance[near_of[k]] == std::numeric_limits<double>::infinity()) far_of[far++] = near_of[k];
   if (far > 0) refine_off_curve(kernel, plan, far, far_of, w);
 }
 
@@ -276,8 +274,8 @@ void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, st
   clock.lap(&StageSeconds::read_out);
 }
 
-void fast_path_decide(const PlanData& plan, LaneRows rows, std::size_t count, bool on_curve,
-                      const InvertOptions& options, BatchWorkspace& w, StageClock& clock) {
+void fast_path_decide(const PlanData& plan, LaneRows rows, std::size_t count, const InvertOptions& options,
+                      BatchWorkspace& w, StageClock& clock) {
   const double tolerance = normalized_tolerance(plan, options);
   const kernels::Implementation& kernel = kernels::active_implementation();
   const bool formula = takes_formula_path(plan, options);
@@ -290,7 +288,7 @@ void fast_path_decide(const PlanData& plan, LaneRows rows, std::size_t count, bo
   // settle(), as it does a lane that ends at an end of the segment off the curve (settle() then
   // also looks along the extension).
   std::copy_n(w.t_algebraic.begin(), count, w.t_refined.begin());
-  refine_grouped(kernel, plan, count, formula, on_curve, w);
+  refine_grouped(kernel, plan, count, formula, w);
   detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
   if (two_passes) {
     // The common case of pass 1, for the whole batch first: a lane refined onto the segment within

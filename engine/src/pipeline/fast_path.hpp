@@ -54,22 +54,16 @@ struct FarLanes {
 // for few lanes (formula_path.hpp). The lanes that reach the SVD path then form theirs.
 bool forms_b_late(const PlanData& plan, const InvertOptions& options);
 
-// Up to this sigma_min estimate (||B z|| / ||B||) a seeded lane is on the curve, as far as the
-// stages after the seed are concerned (refine_grouped's groups, by_kind.hpp's kinds): on the curve
-// ~1e-16, 1e-6 of the diagonal off it ~1e-7.
-inline constexpr double kOnCurveEstimate = 1e-12;
-
 // Stage 2 and the read-out for the batch's active lanes: w.t_algebraic (NaN where the seed did
 // not settle), w.defect and w.estimate per lane (with degree 2's w.z, w.second and sigma_next).
 void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
                     const InvertOptions& options, BatchWorkspace& w, StageClock& clock, FarLanes far = {});
 
 // Stages 3-4, the refinement and the decisions it allows, for w's lanes 0..count as
-// fast_path_seed left them (or as by_kind.hpp's queue puts them back); lane l's answer goes to
-// rows[l]. on_curve: every lane's estimate is known to be at most kOnCurveEstimate (by_kind.hpp
-// told it), so the refinement need not sort them.
-void fast_path_decide(const PlanData& plan, LaneRows rows, std::size_t count, bool on_curve,
-                      const InvertOptions& options, BatchWorkspace& w, StageClock& clock);
+// fast_path_seed left them (or as by_kind.hpp's far queue puts them back); lane l's answer goes to
+// rows[l].
+void fast_path_decide(const PlanData& plan, LaneRows rows, std::size_t count, const InvertOptions& options,
+                      BatchWorkspace& w, StageClock& clock);
 
 // The full kernel (pivoted LU, `iterations` solves: kernels::kNullVectorIterations in pass 2, more
 // for the seed retry; the sigma_{n-1} estimate) for the lanes
