@@ -116,7 +116,8 @@ bool invert_seed_queue(const PlanData& plan, std::size_t m, const InvertOptions&
   return decide_lanes(plan, rows, m, options, w, clock, /*b_formed=*/false, stages);
 }
 
-// The first m lanes of the far queue (by_kind.hpp), as a batch after its seed.
+// The first m lanes of the far queue (by_kind.hpp), as a batch from the refinement on (far lanes
+// skip the seed).
 bool invert_far_queue(const PlanData& plan, std::size_t m, const InvertOptions& options, StageSeconds* stages) {
   BatchWorkspace& w = batch_workspace();
   StageClock clock(stages);
