@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "isolation.hpp"
-#include "pipeline/candidate.hpp"
 #include "pipeline/formula_path.hpp"
 
 namespace bezinv::detail {
@@ -21,8 +20,7 @@ FarQueue& far_queue() {
 }
 
 bool sets_far_lanes_aside(const PlanData& plan, const InvertOptions& options) {
-  return takes_fast_path(plan, options) && plan.degree >= 3 && !takes_formula_path(plan, options) &&
-         skips_far_seeds(plan, normalized_tolerance(plan, options));
+  return takes_fast_path(plan, options) && plan.degree >= 3 && !takes_formula_path(plan, options);
 }
 
 FarLanes far_lanes(const PlanData& plan, double tolerance, std::size_t count, const BatchWorkspace& w) {

@@ -42,8 +42,8 @@ SeedQueue& seed_queue();
 FarQueue& far_queue();
 
 // Whether this plan's batches may set their far lanes aside: the fast path's two passes seeded from
-// B (degree 3 and above; not the formula path, whose lanes are not seeded from B), where the formed
-// seed skips far lanes (far_lanes tells).
+// B (degree 3 and above; not the formula path, whose lanes are not seeded from B). Whether the
+// plan's formed seed skips far lanes at all, far_lanes tells.
 bool sets_far_lanes_aside(const PlanData& plan, const InvertOptions& options);
 
 // The batch's lanes 0..count far from the segment, where the plan's formed seed leaves such lanes

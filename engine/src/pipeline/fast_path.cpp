@@ -228,10 +228,6 @@ void off_curve_first(const PlanData& plan, const InvertOptions& options, double 
     if (!leaves[l]) w.active[l] = active[l];
 }
 
-}  // namespace
-
-namespace {
-
 // Degree 2 decides each lane with B's gap at once (the pivoted kernel gives it); a conic's
 // formula lanes have no B, so on the formula path they take the two passes: the isolation
 // certificate, then the gap pass for the lanes it leaves.
