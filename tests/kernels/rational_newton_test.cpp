@@ -192,14 +192,18 @@ TEST(RationalNewton, OffCurvePointsAlongTheNormal) {
 // groups in two rounds, the lanes still iterating after the first regrouped (rational_newton-inl.hpp,
 // rational_newton_groups). Every lane must end exactly as it does alone, in a batch of one (one
 // round), whatever its place among the others; and batches longer than a round's 64 lanes too.
+// nearest_newton likewise, whose last group runs one vector wide where one vector holds it
+// (nearest_newton-inl.hpp, groups): a lane alone is always in such a group.
 TEST(RationalNewton, ALaneEndsAsAloneWhateverItsGroup) {
+  for (const Variant variant : {Variant::casteljau, Variant::nearest})
   for (const Implementation* implementation : available_implementations()) {
     std::mt19937_64 rng(31);
     std::uniform_real_distribution<double> parameter(0.05, 0.95), side(-0.05, 0.05);
     for (int n = 2; n <= 12; n += test_support::kSanitizerThinning) {
       const TestCurve c = random_curve(n, rng, /*separate=*/n % 3 == 0);
       for (const std::size_t count : {64u, 37u, 130u}) {
-        SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " count " + std::to_string(count));
+        SCOPED_TRACE(std::string(implementation->name) + name(variant) + " n=" + std::to_string(n) + " count " +
+                     std::to_string(count));
         Lanes batch;
         for (std::size_t l = 0; l < count; ++l) {
           const double t_star = parameter(rng);
@@ -212,11 +216,11 @@ TEST(RationalNewton, ALaneEndsAsAloneWhateverItsGroup) {
           }
         }
         Lanes alone = batch;
-        batch.run(*implementation, c, Variant::casteljau);
+        batch.run(*implementation, c, variant);
         for (std::size_t l = 0; l < count; ++l) {
           Lanes one;
           one.add(alone.u[l], alone.v[l], alone.t[l]);
-          one.run(*implementation, c, Variant::casteljau);
+          one.run(*implementation, c, variant);
           EXPECT_TRUE(test_support::same_bits(batch.t[l], one.t[0])) << "lane " << l << ": " << sci(batch.t[l])
                                                                      << " alone " << sci(one.t[0]);
           EXPECT_TRUE(test_support::same_bits(batch.distance[l], one.distance[0]))

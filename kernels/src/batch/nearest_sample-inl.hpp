@@ -24,42 +24,56 @@
 HWY_BEFORE_NAMESPACE();
 namespace bezinv::kernels::HWY_NAMESPACE {
 
-void nearest_sample_batch(const double* samples, int last, int stride, std::size_t count, const double* u,
-                          const double* v, double* t) {
+namespace nearest {
+
+// One group of lanes, first..first+lanes, held in d's registers.
+template <class D>
+HWY_INLINE void sample_group(D d, const double* samples, int last, int stride, std::size_t first, std::size_t lanes,
+                             const double* u, const double* v, double* t) {
   namespace hn = wide;
-  using D = wide::Tag<(HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128) ? 1 : 2>;
   using V = hn::Vec<D>;
-  const D d;
   constexpr std::size_t L = hn::MaxLanes(D());
   HWY_ALIGN double best[L], at[L];
-  for (std::size_t first = 0; first < count; first += L) {
-    const std::size_t lanes = std::min(L, count - first);
-    const auto distance2 = [&](int k, std::size_t l) {
-      const double dx = samples[2 * k] - u[first + l], dy = samples[2 * k + 1] - v[first + l];
-      return dx * dx + dy * dy;
-    };
-    const V pu = hn::LoadGroup(d, u, first, lanes, 0.0), pv = hn::LoadGroup(d, v, first, lanes, 0.0);
-    V nearest = hn::Set(d, std::numeric_limits<double>::infinity()), index = hn::Zero(d);
-    for (int k = 0; k <= last; k += stride) {
-      const V dx = hn::Sub(hn::Set(d, samples[2 * k]), pu), dy = hn::Sub(hn::Set(d, samples[2 * k + 1]), pv);
-      const V d2 = hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy));
-      const auto nearer = hn::Lt(d2, nearest);  // strict: the first of equally near samples stays
-      nearest = hn::IfThenElse(nearer, d2, nearest);
-      index = hn::IfThenElse(nearer, hn::Set(d, k), index);
-    }
-    hn::Store(nearest, d, best);
-    hn::Store(index, d, at);
-    for (std::size_t l = 0; l < lanes; ++l) {
-      const int k = static_cast<int>(at[l]);
-      double start = static_cast<double>(k) / last;
-      if (k >= stride && k + stride <= last) {
-        const double before = distance2(k - stride, l), after = distance2(k + stride, l);
-        const double curvature = before - 2 * best[l] + after;
-        if (curvature > 0) start += std::clamp(0.5 * (before - after) / curvature, -1.0, 1.0) * stride / last;
-      }
-      t[first + l] = start;
-    }
+  const auto distance2 = [&](int k, std::size_t l) {
+    const double dx = samples[2 * k] - u[first + l], dy = samples[2 * k + 1] - v[first + l];
+    return dx * dx + dy * dy;
+  };
+  const V pu = hn::LoadGroup(d, u, first, lanes, 0.0), pv = hn::LoadGroup(d, v, first, lanes, 0.0);
+  V nearest = hn::Set(d, std::numeric_limits<double>::infinity()), index = hn::Zero(d);
+  for (int k = 0; k <= last; k += stride) {
+    const V dx = hn::Sub(hn::Set(d, samples[2 * k]), pu), dy = hn::Sub(hn::Set(d, samples[2 * k + 1]), pv);
+    const V d2 = hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy));
+    const auto nearer = hn::Lt(d2, nearest);  // strict: the first of equally near samples stays
+    nearest = hn::IfThenElse(nearer, d2, nearest);
+    index = hn::IfThenElse(nearer, hn::Set(d, k), index);
   }
+  hn::Store(nearest, d, best);
+  hn::Store(index, d, at);
+  for (std::size_t l = 0; l < lanes; ++l) {
+    const int k = static_cast<int>(at[l]);
+    double start = static_cast<double>(k) / last;
+    if (k >= stride && k + stride <= last) {
+      const double before = distance2(k - stride, l), after = distance2(k + stride, l);
+      const double curvature = before - 2 * best[l] + after;
+      if (curvature > 0) start += std::clamp(0.5 * (before - after) / curvature, -1.0, 1.0) * stride / last;
+    }
+    t[first + l] = start;
+  }
+}
+
+}  // namespace nearest
+
+// Two vectors a group, but a last group one vector holds runs as one (the second's broadcasts and
+// selects would be for padding lanes only).
+void nearest_sample_batch(const double* samples, int last, int stride, std::size_t count, const double* u,
+                          const double* v, double* t) {
+  using Wide = wide::Tag<(HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128) ? 1 : 2>;
+  using Narrow = wide::Tag<1>;
+  constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(Narrow());
+  std::size_t first = 0;
+  for (; first + L1 < count; first += LW)
+    nearest::sample_group(Wide(), samples, last, stride, first, std::min(LW, count - first), u, v, t);
+  if (first < count) nearest::sample_group(Narrow(), samples, last, stride, first, count - first, u, v, t);
 }
 
 }  // namespace bezinv::kernels::HWY_NAMESPACE
