@@ -25,6 +25,7 @@
 #include "plan_data.hpp"
 #include "pipeline/fast_path.hpp"
 #include "pipeline/workspace.hpp"
+#include "support/bits.hpp"
 #include "support/same_row.hpp"
 #include "support/sanitizers.hpp"
 
@@ -107,9 +108,9 @@ TEST(LanesByKind, SetAsideSendsFarLanesToTheFarQueueAndNearOnesToTheSeedQueue) {
   ASSERT_TRUE(far.known);
   std::vector<std::size_t> far_of, near_of;
   for (std::size_t l = 0; l < kBatchLanes; ++l) {
-    ASSERT_EQ((far.bits >> l) & 1, detail::segment_far(data, w.u[l], w.v[l]) ? 1u : 0u) << l;
+    ASSERT_EQ(far.lanes.has(l), detail::segment_far(data, w.u[l], w.v[l])) << l;
     if (l == 7) continue;
-    ((far.bits >> l) & 1 ? far_of : near_of).push_back(l);
+    (far.lanes.has(l) ? far_of : near_of).push_back(l);
   }
   ASSERT_GT(far_of.size(), 8u);
   ASSERT_GT(near_of.size(), 8u);
@@ -122,13 +123,13 @@ TEST(LanesByKind, SetAsideSendsFarLanesToTheFarQueueAndNearOnesToTheSeedQueue) {
   ASSERT_EQ(far_lanes.size, 3 + far_of.size());
   ASSERT_EQ(seeds.size, 3 + near_of.size());
   for (std::size_t k = 0; k < far_of.size(); ++k) {
-    EXPECT_EQ(far_lanes.u[3 + k], w.u[far_of[k]]);
-    EXPECT_EQ(far_lanes.v[3 + k], w.v[far_of[k]]);
+    EXPECT_TRUE(test_support::same_bits(far_lanes.u[3 + k], w.u[far_of[k]]));
+    EXPECT_TRUE(test_support::same_bits(far_lanes.v[3 + k], w.v[far_of[k]]));
     EXPECT_EQ(far_lanes.target[3 + k], &results[far_of[k]]);
   }
   for (std::size_t k = 0; k < near_of.size(); ++k) {
-    EXPECT_EQ(seeds.u[3 + k], w.u[near_of[k]]);
-    EXPECT_EQ(seeds.point[3 + k].x, points[near_of[k]].x);
+    EXPECT_TRUE(test_support::same_bits(seeds.u[3 + k], w.u[near_of[k]]));
+    EXPECT_TRUE(test_support::same_bits(seeds.point[3 + k].x, points[near_of[k]].x));
     EXPECT_EQ(seeds.target[3 + k], &results[near_of[k]]);
   }
 
@@ -147,7 +148,7 @@ TEST(LanesByKind, SetAsideSendsFarLanesToTheFarQueueAndNearOnesToTheSeedQueue) {
   // A batch all near, or all far, stays as it is.
   seeds.size = far_lanes.size = 0;
   for (const bool far_only : {false, true}) {
-    for (std::size_t l = 0; l < kBatchLanes; ++l) w.active[l] = ((far.bits >> l) & 1) == far_only;
+    for (std::size_t l = 0; l < kBatchLanes; ++l) w.active[l] = far.lanes.has(l) == far_only;
     EXPECT_FALSE(detail::set_aside_far(far, points.data(), results.data(), kBatchLanes, w));
     EXPECT_EQ(seeds.size + far_lanes.size, 0u);
   }

@@ -112,7 +112,7 @@ bool invert_seed_queue(const PlanData& plan, std::size_t m, const InvertOptions&
   clock.lap(&StageSeconds::form_b);
   // Its lanes are all near the segment (set_aside_far sent them), so not one is far.
   const LaneRows rows(gathered.data());
-  fast_path_seed(plan, points.data(), rows, m, options, w, clock, FarLanes{.known = true, .bits = 0});
+  fast_path_seed(plan, points.data(), rows, m, options, w, clock, FarLanes{.known = true, .lanes = {}});
   return decide_lanes(plan, rows, m, options, w, clock, /*b_formed=*/false, stages);
 }
 

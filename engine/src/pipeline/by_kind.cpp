@@ -1,6 +1,5 @@
 #include "pipeline/by_kind.hpp"
 
-#include <bit>
 #include <cstdint>
 #include <limits>
 
@@ -24,36 +23,29 @@ bool sets_far_lanes_aside(const PlanData& plan, const InvertOptions& options) {
 }
 
 FarLanes far_lanes(const PlanData& plan, double tolerance, std::size_t count, const BatchWorkspace& w) {
-  static_assert(kBatchLanes == 64, "a batch's lanes as the bits of one word");
   if (!skips_far_seeds(plan, tolerance)) return {};
-  FarLanes far{.known = true};
-  for (std::size_t l = 0; l < count; ++l)
-    far.bits |= static_cast<std::uint64_t>(segment_far(plan, w.u[l], w.v[l])) << l;
+  FarLanes far{.known = true, .lanes = {}};
+  for (std::size_t l = 0; l < count; ++l) far.lanes.add(l, segment_far(plan, w.u[l], w.v[l]));
   return far;
 }
 
 bool set_aside_far(FarLanes far_from_segment, const Point* points, PointResult* results, std::size_t count,
                    const BatchWorkspace& w) {
   if (!far_from_segment.known) return false;
-  std::uint64_t active = 0;
-  for (std::size_t l = 0; l < count; ++l) active |= static_cast<std::uint64_t>(w.active[l]) << l;
-  std::uint64_t far = far_from_segment.bits & active, near = active & ~far_from_segment.bits;
-  if (far == 0 || near == 0) return false;
-  // The set bits alone, in order, without a branch per lane (far and near often alternate).
+  LaneSet active;
+  for (std::size_t l = 0; l < count; ++l) active.add(l, w.active[l]);
+  const LaneSet far = active.both(far_from_segment.lanes), near = active.without(far_from_segment.lanes);
+  if (far.empty() || near.empty()) return false;
   FarQueue& far_lanes = far_queue();
-  std::size_t k = far_lanes.size;
-  for (; far != 0; far &= far - 1, ++k) {
-    const std::size_t l = static_cast<std::size_t>(std::countr_zero(far));
+  far.for_each([&](std::size_t l) {
+    const std::size_t k = far_lanes.size++;
     far_lanes.u[k] = w.u[l], far_lanes.v[k] = w.v[l], far_lanes.target[k] = &results[l];
-  }
-  far_lanes.size = k;
+  });
   SeedQueue& seeds = seed_queue();
-  k = seeds.size;
-  for (; near != 0; near &= near - 1, ++k) {
-    const std::size_t l = static_cast<std::size_t>(std::countr_zero(near));
+  near.for_each([&](std::size_t l) {
+    const std::size_t k = seeds.size++;
     seeds.u[k] = w.u[l], seeds.v[k] = w.v[l], seeds.point[k] = points[l], seeds.target[k] = &results[l];
-  }
-  seeds.size = k;
+  });
   return true;
 }
 

@@ -77,7 +77,7 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
   std::size_t seeded = 0;
   if (skips_far_seeds(plan, tolerance)) {
     for (std::size_t l = 0; l < count; ++l)
-      if (far.known ? !((far.bits >> l) & 1) : !segment_far(plan, w.u[l], w.v[l]))
+      if (far.known ? !far.lanes.has(l) : !segment_far(plan, w.u[l], w.v[l]))
         seeded_of[seeded++] = static_cast<std::uint8_t>(l);
   } else {
     seeded = count;

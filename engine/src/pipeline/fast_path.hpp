@@ -47,7 +47,7 @@ inline bool skips_far_seeds(const PlanData& plan, double tolerance) {
 // them itself.
 struct FarLanes {
   bool known = false;
-  std::uint64_t bits = 0;
+  LaneSet lanes;
 };
 
 // Whether stage 1 leaves the batch's B unformed: the seed forms it, or the formula path needs it

@@ -2,6 +2,7 @@
 // The batch a thread works on: kBatchLanes points of one curve, stored lane by lane (structure of
 // arrays), so that each stage is one loop over the batch (docs/README.md, "How a point flows").
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -12,8 +13,46 @@
 namespace bezinv::detail {
 
 // Points per batch: enough to fill the kernels' SIMD groups, few enough that a batch's B matrices
-// stay in cache up to moderate degrees. Speed only: no answer depends on it.
-inline constexpr std::size_t kBatchLanes = 64;
+// stay in cache up to moderate degrees. Speed only: no answer depends on it. Each stage after the
+// seed runs its kernels on the lanes of one kind, compacted, and a kernel's last SIMD group runs
+// whole however few lanes it holds: the more lanes a batch has, the less that costs, most of all
+// in a batch of both kinds, where each kind has half of them (docs/fast-path.md, "Mixed batches").
+// 128 rather than 64: 1.02-1.05x at degrees 3-20, on the curve and off it. At most 256: a lane's
+// index is a byte.
+inline constexpr std::size_t kBatchLanes = 128;
+static_assert(kBatchLanes % 64 == 0 && kBatchLanes <= 256);
+
+// A set of a batch's lanes: lane l is bit l % 64 of word l / 64.
+class LaneSet {
+ public:
+  void add(std::size_t l, bool in) { words_[l / 64] |= static_cast<std::uint64_t>(in) << (l % 64); }
+  bool has(std::size_t l) const { return (words_[l / 64] >> (l % 64)) & 1u; }
+  bool empty() const {
+    std::uint64_t any = 0;
+    for (const std::uint64_t word : words_) any |= word;
+    return any == 0;
+  }
+  // The lanes of both sets; of this set and not `other`.
+  LaneSet both(const LaneSet& other) const { return combine(other, [](std::uint64_t a, std::uint64_t b) { return a & b; }); }
+  LaneSet without(const LaneSet& other) const { return combine(other, [](std::uint64_t a, std::uint64_t b) { return a & ~b; }); }
+  // f(l) for every lane l of the set, in order, one step per lane (no branch per lane of the batch:
+  // where the lanes of two kinds alternate, that branch would be mispredicted half the time).
+  template <class F>
+  void for_each(F&& f) const {
+    for (std::size_t i = 0; i < words_.size(); ++i)
+      for (std::uint64_t word = words_[i]; word != 0; word &= word - 1)
+        f(64 * i + static_cast<std::size_t>(std::countr_zero(word)));
+  }
+
+ private:
+  template <class Op>
+  LaneSet combine(const LaneSet& other, Op op) const {
+    LaneSet out;
+    for (std::size_t i = 0; i < words_.size(); ++i) out.words_[i] = op(words_[i], other.words_[i]);
+    return out;
+  }
+  std::array<std::uint64_t, kBatchLanes / 64> words_{};
+};
 
 // Where lane l of a batch answers: results[l] for a batch of consecutive points (the common case:
 // an address, not a load), *rows[l] for lanes gathered from several batches (by_kind.hpp).
