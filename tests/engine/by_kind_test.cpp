@@ -86,6 +86,34 @@ TEST(LanesByKind, EveryRowOfAMixedFileIsThePointsRowAlone) {
   EXPECT_GT(rows, 0u);
 }
 
+// A LaneSet holds any of a batch's lanes, in either of its words, and visits them in order.
+TEST(LanesByKind, ALaneSetHoldsEveryLaneOfABatchInOrder) {
+  using detail::kBatchLanes;
+  detail::LaneSet odd, low, none;
+  for (std::size_t l = 0; l < kBatchLanes; ++l) {
+    odd.add(l, l % 2 == 1);
+    low.add(l, l < 70);  // across the first word's end
+    none.add(l, false);
+  }
+  EXPECT_TRUE(none.empty());
+  EXPECT_FALSE(odd.empty());
+  std::vector<std::size_t> seen;
+  odd.both(low).for_each([&](std::size_t l) { seen.push_back(l); });
+  std::vector<std::size_t> expected;
+  for (std::size_t l = 1; l < 70; l += 2) expected.push_back(l);
+  EXPECT_EQ(seen, expected);
+  seen.clear();
+  odd.without(low).for_each([&](std::size_t l) { seen.push_back(l); });
+  expected.clear();
+  for (std::size_t l = 71; l < kBatchLanes; l += 2) expected.push_back(l);
+  EXPECT_EQ(seen, expected);
+  for (std::size_t l = 0; l < kBatchLanes; ++l) {
+    EXPECT_EQ(odd.has(l), l % 2 == 1) << l;
+    EXPECT_EQ(low.has(l), l < 70) << l;
+  }
+  EXPECT_TRUE(odd.without(odd).empty());
+}
+
 // set_aside_far on a batch of a degree-16 curve: points on it (near) and 1e-2 of the diagonal off
 // it (far from the segment, as segment_far tells), which lanes go to which queue, in order.
 TEST(LanesByKind, SetAsideSendsFarLanesToTheFarQueueAndNearOnesToTheSeedQueue) {

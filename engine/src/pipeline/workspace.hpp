@@ -17,8 +17,9 @@ namespace bezinv::detail {
 // seed runs its kernels on the lanes of one kind, compacted, and a kernel's last SIMD group runs
 // whole however few lanes it holds: the more lanes a batch has, the less that costs, most of all
 // in a batch of both kinds, where each kind has half of them (docs/fast-path.md, "Mixed batches").
-// 128 rather than 64: 1.02-1.05x at degrees 3-20, on the curve and off it. At most 256: a lane's
-// index is a byte.
+// 128 rather than 64: on the curve 1.00-1.04x, off it 0.99-1.05x, mixed batches 1.02-1.06x at
+// degrees 2-20; the workspace's matrices, sized for degree 32, then take 1 MB each per thread.
+// At most 256: a lane's index is a byte.
 inline constexpr std::size_t kBatchLanes = 128;
 static_assert(kBatchLanes % 64 == 0 && kBatchLanes <= 256);
 
@@ -33,8 +34,12 @@ class LaneSet {
     return any == 0;
   }
   // The lanes of both sets; of this set and not `other`.
-  LaneSet both(const LaneSet& other) const { return combine(other, [](std::uint64_t a, std::uint64_t b) { return a & b; }); }
-  LaneSet without(const LaneSet& other) const { return combine(other, [](std::uint64_t a, std::uint64_t b) { return a & ~b; }); }
+  LaneSet both(const LaneSet& other) const {
+    return combine(other, [](std::uint64_t a, std::uint64_t b) { return a & b; });
+  }
+  LaneSet without(const LaneSet& other) const {
+    return combine(other, [](std::uint64_t a, std::uint64_t b) { return a & ~b; });
+  }
   // f(l) for every lane l of the set, in order, one step per lane (no branch per lane of the batch:
   // where the lanes of two kinds alternate, that branch would be mispredicted half the time).
   template <class F>
