@@ -1,6 +1,5 @@
 #include "pipeline/by_kind.hpp"
 
-#include <cstdint>
 #include <limits>
 
 #include "isolation.hpp"
