@@ -68,6 +68,18 @@ bool forms_b_late(const PlanData& plan, const InvertOptions& options) {
          reports_formula_unrefined(plan, options);
 }
 
+kernels::PlaneFormula plane_formula(const FormulaPathData& f) {
+  return {.degree = f.degree,
+          .centre_u = f.centre_u,
+          .centre_v = f.centre_v,
+          .inverse_half_u = f.inverse_half_u,
+          .inverse_half_v = f.inverse_half_v,
+          .max_coordinate = kFormulaPathMaxCoordinate,
+          .min_denominator = kFormulaPathMinDenominator,
+          .n = f.n.data(),
+          .m = f.m.data()};
+}
+
 double formula_parameter(const FormulaPathData& f, double u, double v) {
   if (f.degree == 1) {  // degrees 3 (and 2): linear over linear, as the fast path's batches have it
     double t;
@@ -118,11 +130,11 @@ void formula_or_seed(const PlanData& plan, const Point* points, LaneRows rows, s
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
   std::array<double, kBatchLanes> formula_t;
-  if (f.degree == 1) {
+  if (f.degree == 1)
     linear_formula_parameters(f, count, w.u.data(), w.v.data(), formula_t.data());
-  } else {
-    for (std::size_t l = 0; l < count; ++l) formula_t[l] = w.active[l] ? formula_parameter(f, w.u[l], w.v[l]) : 0.0;
-  }
+  else  // every lane, inactive ones too: a batch is nearly all active, and a lane costs O(d^2)
+    kernels::active_implementation().formula_parameter(plane_formula(f), count, w.u.data(), w.v.data(),
+                                                       formula_t.data());
   std::size_t seeded = 0;
   for (std::size_t l = 0; l < count; ++l) {
     w.from_formula[l] = 0;

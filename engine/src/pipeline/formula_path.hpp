@@ -7,6 +7,7 @@
 #include <cstddef>
 
 #include "bezinv/invert.hpp"
+#include "bezinv/kernels/batch.hpp"
 #include "plan_data.hpp"
 #include "pipeline/workspace.hpp"
 
@@ -32,6 +33,9 @@ bool reports_formula_unrefined(const PlanData& plan, const InvertOptions& option
 // formula is not used there: M within kFormulaPathMinDenominator of the size of its terms (a base
 // point near), or the point farther than kFormulaPathMaxCoordinate.
 double formula_parameter(const FormulaPathData& f, double u, double v);
+
+// The formula as the formula_parameter kernel takes it (the same N/M, the same NaNs; f outlives it).
+kernels::PlaneFormula plane_formula(const FormulaPathData& f);
 
 // formula_parameter of a linear formula (f.degree 1: a conic's or a cubic's) at `count` points at
 // once, t[l] at (u[l], v[l]), without a call or a branch per point (the fast path's batches on

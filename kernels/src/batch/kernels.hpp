@@ -37,6 +37,8 @@ using BezoutNullVectorSeedKernel = void (*)(int n, std::size_t count, std::size_
                                             double* poison, double settled_defect);
 using SpaceCheckKernel = void (*)(const SpaceCurve& curve, std::size_t count, const double* t, const double* x,
                                   const double* y, const double* z, double* distance);
+using FormulaParameterKernel = void (*)(const PlaneFormula& formula, std::size_t count, const double* u,
+                                        const double* v, double* t);
 
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);
@@ -51,5 +53,6 @@ BernsteinParameterKernel bernstein_parameter_kernel(std::int64_t target);
 BezoutMatrixKernel bezout_matrix_kernel(std::int64_t target);
 BezoutNullVectorSeedKernel bezout_null_vector_seed_kernel(std::int64_t target);
 SpaceCheckKernel space_check_kernel(std::int64_t target);
+FormulaParameterKernel formula_parameter_kernel(std::int64_t target);
 
 }  // namespace bezinv::kernels::batch

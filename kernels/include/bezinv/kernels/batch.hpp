@@ -43,6 +43,8 @@ inline constexpr int kRationalNewtonMinDegree = 1;        // rational_newton: th
 inline constexpr int kRationalNewtonMaxDegree = kMaxBatchSize;
 inline constexpr int kSpaceCheckMinDegree = 1;            // space_check: the curve's degree
 inline constexpr int kSpaceCheckMaxDegree = kMaxBatchSize;
+inline constexpr int kFormulaParameterMinDegree = 1;      // formula_parameter: the formula's degree
+inline constexpr int kFormulaParameterMaxDegree = kMaxBatchSize;
 
 // null_vector's solves from (1, ..., 1); null_vector_iterations takes at least as many.
 inline constexpr int kNullVectorIterations = 3;
@@ -102,6 +104,21 @@ struct SpaceCurve {
   int denominators;  // 1 or 3
   const double* forward;
   const double* backward;
+};
+
+// An inversion formula t = N(u, v) / M(u, v) of formula_parameter (the engine's FormulaPathData):
+// N and M of total degree `degree` (kFormulaParameterMinDegree..kFormulaParameterMaxDegree) in the
+// Chebyshev basis of a frame, sum_{i + j <= degree} c_ij T_i(a) T_j(b) with
+// a = (u - centre_u) * inverse_half_u, b = (v - centre_v) * inverse_half_v, their (degree + 1)
+// (degree + 2) / 2 coefficients in PlanePolynomial::index order (by i + j, then by j). Where the
+// formula is not used: beyond max_coordinate in u or v, and where |M| is below min_denominator
+// times the sum of its terms' sizes (near a base point of the formula: a double point, a cusp).
+struct PlaneFormula {
+  int degree;
+  double centre_u, centre_v, inverse_half_u, inverse_half_v;
+  double max_coordinate, min_denominator;
+  const double* n;
+  const double* m;
 };
 
 // One instruction set's kernels. All function pointers are non-null.
@@ -258,6 +275,13 @@ struct Implementation {
   // settled here has the engine's bits. Arrays have `count` entries.
   void (*space_check)(const SpaceCurve& curve, std::size_t count, const double* t, const double* x, const double* y,
                       const double* z, double* distance);
+
+  // t[l] = N / M at the point (u[l], v[l]) of `formula`, l < count, or NaN where the formula is not
+  // used there (PlaneFormula says where; NaN points too): the engine's formula_parameter, operation
+  // for operation and without fused multiply-add, so every implementation gives its bits. O(d^2)
+  // a point where the Bezout seed is O(n^3): the formula path's algebraic step for a whole batch.
+  void (*formula_parameter)(const PlaneFormula& formula, std::size_t count, const double* u, const double* v,
+                            double* t);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the
