@@ -58,6 +58,26 @@ void BM_Formula_parameter(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * kFormulaPoints);
 }
 
+// What the formula path pays once per plan before its first point: the curve's inversion formula,
+// made from its plan (the plans made before the timing), one curve per iteration, cycled.
+void BM_Formula_made(benchmark::State& state) {
+  const int degree = static_cast<int>(state.range(0));
+  std::mt19937_64 rng(77 + degree);
+  std::vector<InversionPlan> plans;
+  for (int c = 0; c < 16; ++c)
+    plans.push_back(make_plan(
+        datasets::random_curve(CurveKind::rational_bezier, degree, rng, datasets::ControlPolygon::perturbed_arc)));
+  std::size_t c = 0;
+  for (auto _ : state) {
+    InversionFormula formula(plans[c]);
+    benchmark::DoNotOptimize(&formula);
+    c = (c + 1) % plans.size();
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+BENCHMARK(BM_Formula_made)->DenseRange(4, 20, 2)->Unit(benchmark::kMillisecond);
+
 BENCHMARK(BM_Formula_parameter)->Arg(2)->Arg(3)->Arg(5)->Arg(8)->Arg(15)->Arg(20)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -289,8 +289,9 @@ int main(int argc, char** argv) {
   invert->add_option("--algebraic", invert_arguments.algebraic,
                      "The fast path's algebraic step: bezout (B's null vector), formula (the curve's inversion "
                      "formula N/M where it is valid, path formula; with --no-refine, N/M itself) or auto (formula "
-                     "on conics and cubics of one denominator and moderate weights, and on a curve close to a "
-                     "lower degree, such as a smooth function's graph; bezout elsewhere)")
+                     "on conics and cubics of one denominator and moderate weights, on a curve close to a lower "
+                     "degree, such as a smooth function's graph, and at degrees 4-20 on a curve with enough points "
+                     "to repay making its formula, 10,000 at degree 4 to 541,000 at 20; bezout elsewhere)")
       ->check(CLI::IsMember(kAlgebraicNames))
       ->capture_default_str();
   std::string invert_rows;

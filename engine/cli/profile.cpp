@@ -134,13 +134,14 @@ int run_profile(const ProfileOptions& options) {
   StageSeconds stages;  // (into the same results: a point's answer does not depend on the pass)
   for (std::size_t c = 0; c < w.plans.size(); ++c) run(c, results[c], &stages);
 
-  std::size_t total = 0, ok = 0, fast = 0, certified = 0, by_distance = 0, projected = 0;
+  std::size_t total = 0, ok = 0, fast = 0, formula = 0, certified = 0, by_distance = 0, projected = 0;
   double max_dt = 0;
   for (std::size_t c = 0; c < w.plans.size(); ++c)
     for (std::size_t i = 0; i < results[c].size(); ++i, ++total) {
       const PointResult& r = results[c][i];
       ok += r.status == Status::ok;
       fast += r.path == Path::bezout_lu || r.path == Path::formula;
+      formula += r.path == Path::formula;
       certified += (r.path == Path::bezout_lu || r.path == Path::formula) && std::isnan(r.sigma_next);  // the isolation certificate's rows
       by_distance += r.path == Path::nearest && std::isnan(r.sigma_min);    // the off-curve path's rows
       projected += r.path == Path::projection;
@@ -157,12 +158,12 @@ int run_profile(const ProfileOptions& options) {
         "\"points\": %zu, \"curves\": %zu, \"noise\": %g, \"mixed\": %s, \"refine\": %s, \"seconds\": %.6g, "
         "\"stages_points_per_second\": {\"form_b\": %.6g, \"kernel\": %.6g, \"read_out\": %.6g, \"refine\": %.6g, "
         "\"off_curve\": %.6g, \"decide\": %.6g, \"space\": %.6g}, \"ok\": %zu, \"fast_path\": %zu, \"certified\": %zu, "
-        "\"off_curve_path\": %zu, \"projection\": %zu, \"max_abs_dt_ok\": %.3g}\n",
+        "\"formula\": %zu, \"off_curve_path\": %zu, \"projection\": %zu, \"max_abs_dt_ok\": %.3g}\n",
         pps, options.degree, options.dimension, threads, static_cast<int>(kernel.size()), kernel.data(), to_string(options.kind), total,
         w.plans.size(), options.noise, options.mixed ? "true" : "false", options.refine ? "true" : "false", wall,
         rate(stages.form_b),
         rate(stages.kernel), rate(stages.read_out), rate(stages.refine), rate(stages.off_curve), rate(stages.decide),
-        rate(stages.space), ok, fast, certified, by_distance, projected, max_dt);
+        rate(stages.space), ok, fast, certified, formula, by_distance, projected, max_dt);
     return 0;
   }
   std::printf("bezinv profile: %zu points on %zu %s %s curves of degree %d, noise %g%s, refine %s, threads %d, kernel %.*s\n\n",
@@ -185,9 +186,11 @@ int run_profile(const ProfileOptions& options) {
   std::printf("%-34s %14.4g   (wall clock, %.3f s)\n\n", "total", pps, wall);
   std::printf("ok %zu of %zu; max |t - t_true| over ok rows %.3g\n", ok, total, max_dt);
   auto percent = [&](std::size_t k) { return total ? 100.0 * static_cast<double>(k) / static_cast<double>(total) : 0.0; };
-  std::printf("answered by the fast path (null vector without an SVD, path bezout_lu): %zu of %zu (%.1f%%), "
+  std::printf("answered by the fast path (null vector or inversion formula without an SVD, paths bezout_lu and "
+              "formula): %zu of %zu (%.1f%%), "
               "%zu (%.1f%%) of them settled by the isolation certificate without a gap; the others by the SVD\n",
               fast, total, percent(fast), certified, percent(certified));
+  std::printf("of them started by the inversion formula (path formula): %zu (%.1f%%)\n", formula, percent(formula));
   std::printf("answered off_curve by distance alone (path nearest, no singular values): %zu (%.1f%%)\n", by_distance,
               percent(by_distance));
   if (options.off_curve == OffCurve::projection)

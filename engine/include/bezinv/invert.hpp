@@ -50,8 +50,12 @@ enum class Path : std::uint8_t {
 // operations per point against B and its seed), and on a curve close to one of lower degree (a
 // smooth function's graph: kNearLowerDegreeRatio) that has a linear one (a polynomial curve linear
 // in t along a direction), where B is nearly singular twice over at every point and the null
-// vector would send most points to the SVD path; bezout on every other curve, where its
-// lane-batched kernel is the faster. With refine false, automatic is bezout.
+// vector would send most points to the SVD path; at degrees 4-20 (one denominator, moderate
+// weights), the curve's own formula for a call with enough points on the curve to repay making it
+// (10,000 at degree 4 to 541,000 at 20, engine/src/pipeline/formula_path.hpp: making it costs up to
+// ~55 ms, and each point then saves up to ~200 ns); bezout on every other curve and call, where
+// its lane-batched kernel is the faster. The choice is per call, never per thread count. With
+// refine false, automatic is bezout.
 enum class Algebraic : std::uint8_t { bezout, formula, automatic };
 
 // "bezout", "formula" or "auto" (the command's --algebraic, Python's algebraic=); false for any

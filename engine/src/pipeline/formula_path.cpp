@@ -57,6 +57,16 @@ bool takes_formula_path(const PlanData& plan, const InvertOptions& options) {
   return asked && takes_fast_path(plan, options) && plan.degree >= 2 && fast_path_formula(plan).usable;
 }
 
+bool repays_curve_formula(const PlanData& plan, const InvertOptions& options, std::size_t points) {
+  if (options.algebraic != Algebraic::automatic || !options.refine || !options.fast_path) return false;
+  if (!plan.usable || plan.piecewise || plan.space || !plan.common_denominator || !plan.formula_weights_moderate)
+    return false;
+  // (A plan close to a lower degree with a linear formula has automatic's formula path already.)
+  if (plan.degree < 4 || plan.degree > kFormulaPathMaxDegree || (plan.near_lower_degree && plan.linear_formula.usable))
+    return false;
+  return points >= kCurveFormulaMinPoints[static_cast<std::size_t>(plan.degree)];
+}
+
 bool reports_formula_unrefined(const PlanData& plan, const InvertOptions& options) {
   // (Degree 1 has no B to form late: a line's parameter is read directly.)
   return !options.refine && options.algebraic == Algebraic::formula && plan.degree >= 2 &&

@@ -4,10 +4,12 @@
 // at a lane's point, t_algebraic = N/M and no B is formed; the other lanes (near the formula's base
 // points, far from the curve) get the seed as on the fast path. From there every lane goes on as
 // there: refinement, the isolation certificate, the gap pass, the SVD path.
+#include <array>
 #include <cstddef>
 
 #include "bezinv/invert.hpp"
 #include "bezinv/kernels/batch.hpp"
+#include "bezinv/tolerances.hpp"
 #include "plan_data.hpp"
 #include "pipeline/workspace.hpp"
 
@@ -24,6 +26,27 @@ const FormulaPathData& fast_path_formula(const PlanData& plan);
 // formula: its linear one (any degree), its conic's or cubic's, or the curve's, made and accurate
 // on the segment (up to kFormulaPathMaxDegree).
 bool takes_formula_path(const PlanData& plan, const InvertOptions& options);
+
+// Algebraic::automatic takes the curve's own inversion formula (degree 4 to kFormulaPathMaxDegree)
+// for a call of at least kCurveFormulaMinPoints[degree] points. Making the formula costs ~0.07 ms at
+// degree 4, ~0.75 ms at 8, ~4 ms at 12, ~17 ms at 16 and ~55 ms at 20 (least squares on a sampled
+// system, once per plan); the formula path then saves ~14 ns a point at degree 4, ~29 at 8, ~60 at
+// 12, ~130 at 16 and ~200 at 20 against the Bezout seed (bench/, AVX-512, one thread). The table is
+// twice the break-even, making cost over saving, rounded up: on one thread the formula is taken
+// where it clearly pays, and on two, whose other thread waits while one makes it, where it pays at
+// all (docs/inversion-formula.md). By the call's points, not per thread: a call's rows do not depend
+// on the number of threads.
+inline constexpr std::array<std::size_t, 21> kCurveFormulaMinPoints{
+    0,      0,      0,      0,      10000,  15000,  21000,  29000,  53000,  70000, 98000,
+    114000, 140000, 176000, 222000, 236000, 264000, 326000, 378000, 467000, 541000};
+static_assert(kCurveFormulaMinPoints.size() == kFormulaPathMaxDegree + 1);
+
+// Whether Algebraic::automatic takes the curve's own formula for a call of `points` points on this
+// plan: refined, with the fast path, one denominator with moderate weights
+// (formula_weights_moderate), degree 4..kFormulaPathMaxDegree, and kCurveFormulaMinPoints. The
+// call then runs as with Algebraic::formula. The choice depends on the call alone, never on the
+// batch, the thread or the thread count.
+bool repays_curve_formula(const PlanData& plan, const InvertOptions& options, std::size_t points);
 
 // Whether refine is off and the formula asked for (InvertOptions::algebraic), and the plan has one:
 // formula_unrefined answers what it can, B is formed late for the other lanes.

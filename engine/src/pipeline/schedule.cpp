@@ -14,6 +14,7 @@
 
 #include "piecewise/invert_piecewise.hpp"
 #include "pipeline/batch.hpp"
+#include "pipeline/formula_path.hpp"
 #include "pipeline/workspace.hpp"
 #include "space/invert_space.hpp"
 
@@ -64,12 +65,19 @@ void invert_curve(const PlanData& plan, std::span<const Point> points, std::span
   std::optional<tbb::enumerable_thread_specific<StageSeconds>> per_thread;
   if (stages) per_thread.emplace();
   auto local = [&]() -> StageSeconds* { return per_thread ? &per_thread->local() : nullptr; };
+  // automatic: the curve's own inversion formula where this call's points repay making it. Made
+  // here, before the threads start: the others would wait for the one that makes it.
+  InvertOptions run_options = options;
+  if (repays_curve_formula(plan, options, points.size())) {
+    run_options.algebraic = Algebraic::formula;
+    formula_path_data(plan);
+  }
   for_each_batch(
-      points.size(), options,
+      points.size(), run_options,
       [&](std::size_t begin, std::size_t end) {
-        invert_batch(plan, points.data() + begin, results.data() + begin, end - begin, options, local());
+        invert_batch(plan, points.data() + begin, results.data() + begin, end - begin, run_options, local());
       },
-      [&] { flush_queues(plan, options, local()); });
+      [&] { flush_queues(plan, run_options, local()); });
   if (per_thread)
     for (const StageSeconds& s : *per_thread) {
       stages->form_b += s.form_b; stages->kernel += s.kernel; stages->read_out += s.read_out;
