@@ -91,11 +91,6 @@ kernels::PlaneFormula plane_formula(const FormulaPathData& f) {
 }
 
 double formula_parameter(const FormulaPathData& f, double u, double v) {
-  if (f.degree == 1) {  // degrees 3 (and 2): linear over linear, as the fast path's batches have it
-    double t;
-    linear_formula_parameters(f, 1, &u, &v, &t);
-    return t;
-  }
   if (!(std::abs(u) <= kFormulaPathMaxCoordinate && std::abs(v) <= kFormulaPathMaxCoordinate))
     return PointResult::nan;
   const double a = (u - f.centre_u) * f.inverse_half_u, b = (v - f.centre_v) * f.inverse_half_v;
@@ -121,30 +116,15 @@ double formula_parameter(const FormulaPathData& f, double u, double v) {
   return numerator / denominator;
 }
 
-void linear_formula_parameters(const FormulaPathData& f, std::size_t count, const double* u, const double* v,
-                               double* t) {
-  for (std::size_t l = 0; l < count; ++l) {
-    const bool near = std::abs(u[l]) <= kFormulaPathMaxCoordinate && std::abs(v[l]) <= kFormulaPathMaxCoordinate;
-    const double a = (u[l] - f.centre_u) * f.inverse_half_u, b = (v[l] - f.centre_v) * f.inverse_half_v;
-    const double numerator = f.n[0] + f.n[1] * a + f.n[2] * b;
-    const double denominator = f.m[0] + f.m[1] * a + f.m[2] * b;
-    const double size = std::abs(f.m[0]) + std::abs(f.m[1] * a) + std::abs(f.m[2] * b);
-    const bool defined = near && std::abs(denominator) >= kFormulaPathMinDenominator * size;
-    t[l] = defined ? numerator / denominator : PointResult::nan;
-  }
-}
-
 void formula_or_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
                      BatchWorkspace& w) {
   const FormulaPathData& f = fast_path_formula(plan);
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
   std::array<double, kBatchLanes> formula_t;
-  if (f.degree == 1)
-    linear_formula_parameters(f, count, w.u.data(), w.v.data(), formula_t.data());
-  else  // every lane, inactive ones too: a batch is nearly all active, and a lane costs O(d^2)
-    kernels::active_implementation().formula_parameter(plane_formula(f), count, w.u.data(), w.v.data(),
-                                                       formula_t.data());
+  // Every lane, inactive ones too: a batch is nearly all active.
+  kernels::active_implementation().formula_parameter(plane_formula(f), count, w.u.data(), w.v.data(),
+                                                     formula_t.data());
   std::size_t seeded = 0;
   for (std::size_t l = 0; l < count; ++l) {
     w.from_formula[l] = 0;

@@ -57,14 +57,9 @@ bool reports_formula_unrefined(const PlanData& plan, const InvertOptions& option
 // point near), or the point farther than kFormulaPathMaxCoordinate.
 double formula_parameter(const FormulaPathData& f, double u, double v);
 
-// The formula as the formula_parameter kernel takes it (the same N/M, the same NaNs; f outlives it).
+// The formula as the formula_parameter kernel takes it (the same N/M, the same NaNs, the same bits:
+// the formula path's batches take the kernel, at every degree; f outlives it).
 kernels::PlaneFormula plane_formula(const FormulaPathData& f);
-
-// formula_parameter of a linear formula (f.degree 1: a conic's or a cubic's) at `count` points at
-// once, t[l] at (u[l], v[l]), without a call or a branch per point (the fast path's batches on
-// conics and cubics; formula_parameter calls it for one point).
-void linear_formula_parameters(const FormulaPathData& f, std::size_t count, const double* u, const double* v,
-                               double* t);
 
 // The algebraic step of the fast path for every active lane: t_algebraic, defect and the sigma_min
 // estimate (NaN on formula lanes), from_formula. The seed's lanes have their B formed here; a lane

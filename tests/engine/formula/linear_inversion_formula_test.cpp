@@ -14,11 +14,13 @@
 
 #include "bezinv/datasets/random_curve.hpp"
 #include "bezinv/inversion_formula.hpp"
+#include "bezinv/kernels/batch.hpp"
 #include "bezinv/plan.hpp"
 #include "bezinv/tolerances.hpp"
 #include "formula/linear_inversion_formula.hpp"
 #include "pipeline/formula_path.hpp"
 #include "plan_data.hpp"
+#include "support/bits.hpp"
 #include "support/known_parameter.hpp"
 
 namespace bezinv {
@@ -95,9 +97,9 @@ TEST(LinearInversionFormula, GivesTheParameterOfAPointMadeFromIt) {
   EXPECT_GT(checked, 700);
 }
 
-// The fast path's batch of the formula gives formula_parameter's bits at every point: on the
-// curve, off it, by the pencil's centre (M = 0: NaN), beyond kFormulaPathMaxCoordinate, and NaN
-// and infinite coordinates.
+// The fast path's batch of the formula (the formula_parameter kernel, every implementation) gives
+// formula_parameter's bits at every point: on the curve, off it, by the pencil's centre (M = 0:
+// NaN), beyond kFormulaPathMaxCoordinate, and NaN and infinite coordinates.
 TEST(LinearInversionFormula, ABatchOfPointsGetsFormulaParametersBits) {
   std::mt19937_64 rng(41);
   std::uniform_real_distribution<double> parameter(0.0, 1.0), spread(-4.0, 4.0);
@@ -125,12 +127,15 @@ TEST(LinearInversionFormula, ABatchOfPointsGetsFormulaParametersBits) {
       for (const std::array<double, 2> odd : {std::array<double, 2>{f.centre_u, f.centre_v}, {big, 0.0}, {0.0, -big},
                                               {nan, 0.0}, {0.0, inf}, {-inf, inf}})
         u.push_back(odd[0]), v.push_back(odd[1]);
-      std::vector<double> t(u.size(), -7.0);
-      detail::linear_formula_parameters(f, u.size(), u.data(), v.data(), t.data());
-      for (std::size_t l = 0; l < u.size(); ++l) {
-        const double want = detail::formula_parameter(f, u[l], v[l]);
-        EXPECT_TRUE(std::isnan(want) ? std::isnan(t[l]) : t[l] == want) << "point " << l << ": " << t[l] << " " << want;
-        ++(std::isnan(want) ? undefined : defined);
+      for (const kernels::Implementation* implementation : kernels::available_implementations()) {
+        std::vector<double> t(u.size(), -7.0);
+        implementation->formula_parameter(detail::plane_formula(f), u.size(), u.data(), v.data(), t.data());
+        for (std::size_t l = 0; l < u.size(); ++l) {
+          const double want = detail::formula_parameter(f, u[l], v[l]);
+          EXPECT_TRUE(test_support::same_bits(t[l], want))
+              << implementation->name << " point " << l << ": " << t[l] << " " << want;
+          if (implementation == kernels::available_implementations().front()) ++(std::isnan(want) ? undefined : defined);
+        }
       }
     }
   EXPECT_GT(defined, 1500);
