@@ -80,6 +80,13 @@ inline constexpr double kNewtonFinalStep = 1e-12;
 // the distance is convex: Newton converges quadratically there, and what remains, about
 // |f''/2f'| 1e-18, is below t's ulp for any but an all but stationary curve.
 inline constexpr double kNearestNewtonFinalStep = 1e-9;
+// On the formula path (engine/src/pipeline/formula_path.hpp) the refinement takes a step this small
+// as its last, where the curve is flat enough over it (|P''| s^2 below rounding, the kernel's
+// test): the formula's start is accurate to ~1e-10 (its segment_error), a step from there leaves
+// about |f''/2f'| 1e-20, below t's ulp as kNearestNewtonFinalStep's does, and with
+// kNewtonFinalStep a group of lanes would take a second jet for the few whose step exceeds 1e-12
+// (1.04-1.12x the whole path at degrees 8-20; the stress tool's t within 0.04 of the accuracy bound).
+inline constexpr double kFormulaNewtonFinalStep = 1e-9;
 // A larger step is halved at most this many times looking for a point no farther from P0.
 inline constexpr int kNewtonMaxHalvings = 40;
 // A step that moves t by at most this many ulps of max(1, |t|) is the last (the kernels'

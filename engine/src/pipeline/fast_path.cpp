@@ -149,7 +149,9 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
 // rational_newton leaves it to the others where its first distance, |P(t*) - P0|, is beyond
 // kFormulaOffCurveDistance (normalized units, the diagonal of order 1: on the curve ~1e-15, 1e-6 of the
 // diagonal off it at least ~1e-6, wherever the formula's projection put t*). Without that, every
-// formula lane off the curve would take rational_newton's dearer iterations. A plan on the formula
+// formula lane off the curve would take rational_newton's dearer iterations. On the formula path
+// its last step may be up to kFormulaNewtonFinalStep (the formula's start is less accurate than
+// the seed's; tolerances.hpp): refine.cpp's Newton bit for bit but for that. A plan on the formula
 // path leaves its few lanes seeded by B (the formula undefined there) the same way.
 // Except where that ends at an end of the segment: whether a point by an end is within the
 // tolerance there, or nearer the extension, turns on the distance's last bits, so those lanes are
@@ -166,7 +168,10 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
   constexpr double kFormulaOffCurveDistance = 1e-10;
   const kernels::RationalCurve curve = kernel_curve(plan);
   kernels::NewtonSettings settings = kNewtonSettings;
-  if (formula) settings.leave_distance = kFormulaOffCurveDistance;
+  if (formula) {
+    settings.leave_distance = kFormulaOffCurveDistance;
+    settings.final_step = kFormulaNewtonFinalStep;
+  }
   std::array<std::uint8_t, kBatchLanes> near_of, far_of;
   std::size_t near = 0, far = 0;
   for (std::size_t l = 0; l < count; ++l) {
