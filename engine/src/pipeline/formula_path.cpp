@@ -59,8 +59,9 @@ bool takes_formula_path(const PlanData& plan, const InvertOptions& options) {
 
 bool repays_curve_formula(const PlanData& plan, const InvertOptions& options, std::size_t points) {
   if (options.algebraic != Algebraic::automatic || !options.refine || !options.fast_path) return false;
-  if (!plan.usable || plan.piecewise || plan.space || !plan.common_denominator || !plan.formula_weights_moderate)
-    return false;
+  // (Not a space curve's projection, inverted chunk by chunk: not measured. A piecewise plan's
+  // spans come here as plans of their own.)
+  if (!plan.usable || plan.space || !plan.common_denominator || !plan.formula_weights_moderate) return false;
   // (A plan close to a lower degree with a linear formula has automatic's formula path already.)
   if (plan.degree < 4 || plan.degree > kFormulaPathMaxDegree || (plan.near_lower_degree && plan.linear_formula.usable))
     return false;

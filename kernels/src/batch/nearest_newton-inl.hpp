@@ -216,19 +216,14 @@ HWY_NOINLINE void group(D d, const Curve& curve, const NearestNewtonSettings& se
 // polynomial) overlap.
 inline constexpr int kWideVectors = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128) ? 1 : 2;
 
-// A last group that one vector holds runs as one vector: the second would hold padding lanes
-// only, and its chains cost nearly what the first's do (a batch of both kinds hands this kernel
-// half its lanes, so its last group is a larger share of the work).
+// A last group that one vector holds runs as one vector (wide::ForEachGroup): a batch of both kinds
+// hands this kernel half its lanes, so its last group is a larger share of the work.
 template <class Curve>
 void groups(const Curve& curve, const NearestNewtonSettings& settings, std::size_t count, const double* u,
             const double* v, double* t, double* distance) {
-  using Wide = wide::Tag<kWideVectors>;
-  using Narrow = wide::Tag<1>;
-  constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(Narrow());
-  std::size_t first = 0;
-  for (; first + L1 < count; first += LW)
-    group(Wide(), curve, settings, first, std::min(LW, count - first), u, v, t, distance);
-  if (first < count) group(Narrow(), curve, settings, first, count - first, u, v, t, distance);
+  wide::ForEachGroup<kWideVectors>(count, [&](auto d, std::size_t first, std::size_t lanes) {
+    group(d, curve, settings, first, lanes, u, v, t, distance);
+  });
 }
 
 }  // namespace nearest

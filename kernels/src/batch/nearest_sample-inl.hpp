@@ -63,17 +63,13 @@ HWY_INLINE void sample_group(D d, const double* samples, int last, int stride, s
 
 }  // namespace nearest
 
-// Two vectors a group, but a last group one vector holds runs as one (the second's broadcasts and
-// selects would be for padding lanes only).
+// Two vectors a group, but a last group one vector holds runs as one (wide::ForEachGroup).
 void nearest_sample_batch(const double* samples, int last, int stride, std::size_t count, const double* u,
                           const double* v, double* t) {
-  using Wide = wide::Tag<(HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128) ? 1 : 2>;
-  using Narrow = wide::Tag<1>;
-  constexpr std::size_t LW = wide::MaxLanes(Wide()), L1 = wide::MaxLanes(Narrow());
-  std::size_t first = 0;
-  for (; first + L1 < count; first += LW)
-    nearest::sample_group(Wide(), samples, last, stride, first, std::min(LW, count - first), u, v, t);
-  if (first < count) nearest::sample_group(Narrow(), samples, last, stride, first, count - first, u, v, t);
+  constexpr int kWide = (HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128) ? 1 : 2;
+  wide::ForEachGroup<kWide>(count, [&](auto d, std::size_t first, std::size_t lanes) {
+    nearest::sample_group(d, samples, last, stride, first, lanes, u, v, t);
+  });
 }
 
 }  // namespace bezinv::kernels::HWY_NAMESPACE

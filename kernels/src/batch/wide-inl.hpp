@@ -144,6 +144,17 @@ HWY_INLINE void StoreGroup(const Vec<T>& a, T d, double* HWY_RESTRICT p, std::si
   for (std::size_t l = 0; l < lanes; ++l) p[first + l] = buffer[l];
 }
 
+// group(Tag<G>(), first, lanes) for the consecutive groups of a batch of `count` lanes, G vectors
+// a group, but a last group that one vector holds as Tag<1>: a wider one would compute its other
+// vectors for padding lanes only, nearly what the first costs.
+template <int G, class Group>
+HWY_INLINE void ForEachGroup(std::size_t count, Group&& group) {
+  constexpr std::size_t LW = MaxLanes(Tag<G>()), L1 = MaxLanes(Tag<1>());
+  std::size_t first = 0;
+  for (; first + L1 < count; first += LW) group(Tag<G>(), first, count - first < LW ? count - first : LW);
+  if (first < count) group(Tag<1>(), first, count - first);
+}
+
 }  // namespace bezinv::kernels::HWY_NAMESPACE::wide
 HWY_AFTER_NAMESPACE();
 
