@@ -266,39 +266,17 @@ void isolation_pieces(PlanData& plan) {
     bounds_around(plan, j, K, around, last - first + 1);
   }
 
-  // Per piece j, the distance from its box to the nearest box not next to it: P(t) lies in the box
-  // of t's piece, so no point of those pieces is nearer P0 than that less |P(t) - P0|. Most lanes
-  // are certified by this one comparison; the others test P0 against the boxes one by one.
-  // (Squared, one square root per piece: K^2 calls of hypot were most of make_plan at K = 256.)
   const double* const x_centre = plan.isolation_boxes.data();
   const double* const x_half = x_centre + K;
   const double* const y_centre = x_centre + 2 * K;
   const double* const y_half = x_centre + 3 * K;
-  // The same beyond kIsolationWide pieces either side (isolation_far_wide): a point that fails the
-  // first comparison then tests only the boxes of the pieces between.
-  plan.isolation_far.assign(K, inf);
-  plan.isolation_far_wide.assign(K, inf);
-  for (int j = 0; j < K; ++j) {
-    double nearest2 = inf, wide2 = inf;
-    for (int q = 0; q < K; ++q) {
-      if (q >= j - 1 && q <= j + 1) continue;
-      double dx = std::abs(x_centre[j] - x_centre[q]) - x_half[j] - x_half[q];
-      double dy = std::abs(y_centre[j] - y_centre[q]) - y_half[j] - y_half[q];
-      dx = dx > 0 ? dx : 0.0;  // NaN (an infinite box) -> 0
-      dy = dy > 0 ? dy : 0.0;
-      const double d2 = dx * dx + dy * dy;
-      nearest2 = std::min(nearest2, d2);
-      if (q < j - kIsolationWide || q > j + kIsolationWide) wide2 = std::min(wide2, d2);
-    }
-    plan.isolation_far[j] = std::sqrt(nearest2);
-    plan.isolation_far_wide[j] = std::sqrt(wide2);
-  }
 
   // The groups' boxes, widened as the pieces' own (kIsolationMargin) for the rounding of their
   // ends: a point they clear is cleared by every box of the group.
   static_assert(32 % kIsolationGroup == 0 && kIsolationMaxPieces % kIsolationGroup == 0);
-  plan.isolation_groups.assign(4 * (K / kIsolationGroup), 0.0);
-  for (int g = 0; g < K / kIsolationGroup; ++g) {
+  const int groups = K / kIsolationGroup;
+  plan.isolation_groups.assign(4 * groups, 0.0);
+  for (int g = 0; g < groups; ++g) {
     double box[4] = {inf, -inf, inf, -inf};
     bool whole_plane = false;  // a box with a NaN in it (never certifies): the group's too
     for (int q = g * kIsolationGroup; q < (g + 1) * kIsolationGroup; ++q) {
@@ -313,6 +291,52 @@ void isolation_pieces(PlanData& plan) {
       const double outward = (k % 2 == 0 ? -1.0 : 1.0) * kIsolationMargin * std::abs(box[k]);
       plan.isolation_groups[4 * g + k] = box[k] + outward;
     }
+  }
+
+  // Per piece j, the distance from its box to the nearest box not next to it: P(t) lies in the box
+  // of t's piece, so no point of those pieces is nearer P0 than that less |P(t) - P0|. Most lanes
+  // are certified by this one comparison; the others test P0 against the boxes one by one.
+  // (Squared, one square root per piece: K^2 calls of hypot were most of make_plan at K = 256.)
+  // The same beyond kIsolationWide pieces either side (isolation_far_wide): a point that fails the
+  // first comparison then tests only the boxes of the pieces between.
+  // The groups from j's own outwards, and only those whose box could hold a box nearer than the
+  // nearest found so far: about K^2 / kIsolationGroup pairs rather than K^2 (at K = 512 every
+  // pair was a quarter of make_plan). A group's bound is lowered by far more than the rounding of
+  // either distance, so a group it skips holds no box whose distance, as computed below, is
+  // smaller: both minima are those over every pair, to the bit.
+  plan.isolation_far.assign(K, inf);
+  plan.isolation_far_wide.assign(K, inf);
+  const double* const group_box = plan.isolation_groups.data();  // x min, x max, y min, y max
+  // The distance along one axis from [lo, hi] to the group's [g_lo, g_hi], from below (NaN and
+  // infinite boxes: 0, never skipped).
+  auto axis_gap_below = [](double lo, double hi, double g_lo, double g_hi) {
+    const double gap = std::max(g_lo - hi, lo - g_hi);
+    const double slack = kIsolationMargin * (1.0 + std::abs(lo) + std::abs(hi) + std::abs(g_lo) + std::abs(g_hi));
+    return std::max(0.0, gap - slack);  // std::max(0, NaN) is 0
+  };
+  for (int j = 0; j < K; ++j) {
+    double nearest2 = inf, wide2 = inf;
+    const int own = j / kIsolationGroup;
+    for (int step = 0; step < 2 * groups; ++step) {
+      const int g = own + (step % 2 == 0 ? step / 2 : -(step + 1) / 2);  // own, own - 1, own + 1, ...
+      if (g < 0 || g >= groups) continue;
+      const double* gb = group_box + 4 * g;
+      const double gx = axis_gap_below(x_centre[j] - x_half[j], x_centre[j] + x_half[j], gb[0], gb[1]);
+      const double gy = axis_gap_below(y_centre[j] - y_half[j], y_centre[j] + y_half[j], gb[2], gb[3]);
+      if (gx * gx + gy * gy > wide2) continue;  // wide2 >= nearest2: nothing nearer in it
+      for (int q = g * kIsolationGroup; q < (g + 1) * kIsolationGroup; ++q) {
+        if (q >= j - 1 && q <= j + 1) continue;
+        double dx = std::abs(x_centre[j] - x_centre[q]) - x_half[j] - x_half[q];
+        double dy = std::abs(y_centre[j] - y_centre[q]) - y_half[j] - y_half[q];
+        dx = dx > 0 ? dx : 0.0;  // NaN (an infinite box) -> 0
+        dy = dy > 0 ? dy : 0.0;
+        const double d2 = dx * dx + dy * dy;
+        nearest2 = std::min(nearest2, d2);
+        if (q < j - kIsolationWide || q > j + kIsolationWide) wide2 = std::min(wide2, d2);
+      }
+    }
+    plan.isolation_far[j] = std::sqrt(nearest2);
+    plan.isolation_far_wide[j] = std::sqrt(wide2);
   }
   segment_far_grid(plan);
 }

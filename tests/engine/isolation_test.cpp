@@ -229,6 +229,31 @@ TEST(Isolation, TheGroupsChangeNothingIsolatedCertifies) {
   RecordProperty("refused", refused);
 }
 
+// isolation_far and isolation_far_wide skip the groups that cannot hold a nearer box: the same
+// minima, to the bit, as over every pair of boxes (degrees up to 24: K = 32 to 512).
+TEST(Isolation, TheFarDistancesAreTheMinimaOverEveryPairOfBoxes) {
+  std::mt19937_64 rng(43);
+  int pieces = 0;
+  for_each_random_plan(rng, 2, 24, [&](int n, const detail::PlanData& plan) {
+    const int K = plan.isolation_pieces;
+    const double* b = plan.isolation_boxes.data();
+    for (int j = 0; j < K; ++j) {
+      double nearest2 = std::numeric_limits<double>::infinity(), wide2 = nearest2;
+      for (int q = 0; q < K; ++q) {
+        if (q >= j - 1 && q <= j + 1) continue;
+        const double dx = std::max(std::abs(b[j] - b[q]) - b[K + j] - b[K + q], 0.0);
+        const double dy = std::max(std::abs(b[2 * K + j] - b[2 * K + q]) - b[3 * K + j] - b[3 * K + q], 0.0);
+        nearest2 = std::min(nearest2, dx * dx + dy * dy);
+        if (q < j - detail::kIsolationWide || q > j + detail::kIsolationWide) wide2 = std::min(wide2, dx * dx + dy * dy);
+      }
+      ASSERT_EQ(plan.isolation_far[j], std::sqrt(nearest2)) << "degree " << n << " piece " << j << " of " << K;
+      ASSERT_EQ(plan.isolation_far_wide[j], std::sqrt(wide2)) << "degree " << n << " piece " << j << " of " << K;
+      ++pieces;
+    }
+  });
+  EXPECT_GT(pieces, 10000);
+}
+
 // The bound m of piece j says: for t, tau in pieces j-1..j+1,
 //   sign(tau - t) (P(tau) - P(t)) . P'(tau) >= 2 m |tau - t| |P'(tau)|   (isolation.hpp).
 TEST(Isolation, TheCurveIsAsMonotoneAroundEachPieceAsItsBoundSays) {
