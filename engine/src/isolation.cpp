@@ -222,9 +222,12 @@ int isolation_piece_count(int degree) {
   // A curve of higher degree turns more, and a piece whose tangents turn by 45 degrees or more
   // certifies nothing around it; more pieces cost make_plan O(K n^2 + K^2). Speed only: a lane
   // the certificate refuses goes on to the gap pass. The refusal rates per K and degree behind
-  // these counts: docs/fast-path.md, "The isolation certificate".
+  // these counts: docs/fast-path.md, "The isolation certificate". Above kLaneBatchedSvdMaxDegree a
+  // refused lane that ends on the SVD path costs the most (Eigen's, one matrix at a time, ~20 us at
+  // degree 20): there K doubles again, for about 1 ms more of make_plan at degree 20.
   if (degree <= 9) return 32;
   if (degree <= 14) return 128;
+  if (degree <= kLaneBatchedSvdMaxDegree) return 256;
   return kIsolationMaxPieces;
 }
 

@@ -56,7 +56,7 @@
 namespace bezinv::detail {
 
 // K, the number of pieces: 32 up to degree 9, more above (isolation_piece_count says why).
-inline constexpr int kIsolationMaxPieces = 256;
+inline constexpr int kIsolationMaxPieces = 512;
 int isolation_piece_count(int degree);
 // From this many pieces on, each keeps a capsule besides its box (plan.isolation_capsules): a
 // point near the curve, a few pieces' length from it, is often within the box of a slanted piece
