@@ -8,6 +8,10 @@
 //   BM_Machine_PointsToResults/T  the pipeline's memory traffic and nothing else: read a Point,
 //                    write a PointResult (16 + 56 bytes), on T threads: the ceiling of any in-memory
 //                    inversion that returns the whole record; items_per_second = points
+//   BM_Machine_PointsToFreshResults/T/H  the same into memory the process has not touched before
+//                    (mapped anew each iteration, as a new output buffer is), in 4 KiB pages (H = 0)
+//                    or asking for 2 MiB pages (H = 1, madvise): what the first touch of each
+//                    result row costs on top
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "machine_bench.cpp"
 #include <hwy/foreach_target.h>  // re-includes this file once per target
@@ -61,6 +65,7 @@ HWY_AFTER_NAMESPACE();
 #include <benchmark/benchmark.h>
 
 #include <cstring>
+#include <sys/mman.h>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -138,12 +143,57 @@ void BM_Machine_PointsToResults(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kPoints));
 }
 
+// The rows of BM_Machine_PointsToResults written into pages mapped anew each iteration (2^22
+// points, 224 MiB of rows; the mapping and its release timed too), on range(0) threads; range(1) = 1
+// asks the kernel for transparent huge pages on them. On a virtual machine a page's first touch
+// can cost more than the inversion of the points it holds (BENCHMARKS.md, "What limits each
+// target"): an engine that writes into a buffer used before does not pay it.
+void BM_Machine_PointsToFreshResults(benchmark::State& state) {
+  constexpr std::size_t kPoints = std::size_t{1} << 22;
+  constexpr std::size_t kBytes = kPoints * sizeof(bezinv::PointResult);
+  static std::vector<bezinv::Point> points(kPoints, bezinv::Point{0.25, 0.5});
+  tbb::task_arena arena(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    void* mapped = mmap(nullptr, kBytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (mapped == MAP_FAILED) {
+      state.SkipWithError("mmap failed");
+      break;
+    }
+    if (state.range(1) == 1) madvise(mapped, kBytes, MADV_HUGEPAGE);
+    auto* results = static_cast<bezinv::PointResult*>(mapped);
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kPoints, 1 << 16), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          bezinv::PointResult& r = results[i];
+          r.t = points[i].x;
+          r.residual = points[i].y;
+          r.t2 = r.sigma_next = bezinv::PointResult::nan;
+          r.sigma_min = points[i].x * points[i].y;
+          r.status = bezinv::Status::ok;
+          r.path = bezinv::Path::bezout_lu;
+          r.reason = "";
+        }
+      });
+    });
+    benchmark::ClobberMemory();
+    munmap(mapped, kBytes);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kPoints));
+}
+
 BENCHMARK(BM_Machine_Fma);
 BENCHMARK(BM_Machine_Div);
 BENCHMARK(BM_Machine_Sqrt);
 BENCHMARK(BM_Machine_Write)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Machine_Copy)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Machine_PointsToResults)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Machine_PointsToFreshResults)
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace bezinv_bench
