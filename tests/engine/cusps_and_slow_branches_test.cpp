@@ -364,6 +364,60 @@ TEST(OrdinaryCuspsAndLoops, LoopsAreStillDoublePoints) {
   EXPECT_GT(findings.points(), 120);
 }
 
+// Points near two cusps found by `bezinv stress` (seeds 20261203 and 7), answered ok where both
+// branches are within the tolerance and the curve leaves it between them. Degree 4, separate
+// denominators: sigma_{n-1}/sigma_1 = 1.03e-3, just above the threshold at which the SVD path
+// looked for a second parameter (kSecondNullDirectionRatio). Degree 8: sigma_{n-1}/sigma_1 ~ 2e-6
+// to 8e-6, but a third singular value below the threshold too, and the roots of the
+// three-dimensional space missed the second parameter that the plane of the two last singular
+// vectors gives. t and t2 from the stress tool's 128-bit truth; what makes each a double point is
+// checked here in long double.
+TEST(OrdinaryCuspsAndLoops, NearCuspsFoundByTheStressToolBothBranchesWithinTheToleranceIsADoublePoint) {
+  struct Case { Point point; double t, t2; };
+  const Curve quartic = Curve::rational(
+      "cusp-4", {0.6846194753513821, 0.38758850696987013, 0.3511591677660687, 0.7437677645078199, 0.576607286840758},
+      {1.4329622123618428, 1.9941349125890946, 1.3925470693287445, 1.0910945290483818, 0.6136860112844664},
+      {0.0534364686510556, 1.370947289626127, 1.1121293954419893, 0.2635402124328937, 0.4987693206933048},
+      {0.8425340760266222, 1.7200441968668603, 1.7753312136889499, 1.5643356826011274, 1.8541706536476603});
+  const std::vector<double> w8{0.5605085385668178, 0.9249164979673687, 1.960301192912961,
+                               0.6296324533805455, 1.361118546625852,  1.2415677323603327,
+                               1.9355611939963744, 1.1057160855393242, 1.557273266571361};
+  const Curve octic = Curve::rational(
+      "cusp-8",
+      {0.529654548716005, 0.42986323644846514, 1.9071530862100243, -0.031028151292986993, 0.7138202594755061,
+       0.8862904091871917, 0.6977888533882752, 0.9092372488101036, 0.7868545560494784},
+      w8,
+      {0.19177201161225851, 0.14312102668064794, 1.7943214002493393, 0.25952197956572615, 0.7692607139408156,
+       0.8404202246332717, 1.1658849128778899, 0.44877332440546785, 1.6747524176240174},
+      w8);
+  const std::vector<std::pair<const Curve*, Case>> cases{
+      {&quartic, {{0.29475183894602885, 0.59165357729594592}, 0.30006480008985925, 0.3105651687067341}},
+      {&octic, {{0.53693774574178577, 0.61106704487108499}, 0.6450402334107592, 0.6498441425523863}},
+      {&octic, {{0.53694437363054459, 0.61107378602547346}, 0.6436741894229511, 0.6512032994484889}},
+      {&octic, {{0.53695122248588179, 0.61108071612841908}, 0.6426571236806523, 0.6522132181700345}},
+      {&octic, {{0.53695198616038797, 0.61108148702154919}, 0.642556880080219, 0.6523126633010471}}};
+  for (const auto& [curve, c] : cases) {
+    const double tolerance = kDefaultRelativeTolerance * datasets::control_diagonal(*curve);
+    auto distance_at = [&](long double t) {
+      return static_cast<double>(datasets::distance(datasets::reference_point(*curve, t), c.point));
+    };
+    ASSERT_LE(distance_at(c.t), tolerance / 2);
+    ASSERT_LE(distance_at(c.t2), tolerance / 2);
+    double farthest = 0;
+    for (int i = 1; i < 64; ++i) farthest = std::max(farthest, distance_at(c.t + (c.t2 - c.t) * i / 64.0L));
+    ASSERT_GE(farthest, 2 * tolerance);
+    const InversionPlan plan = make_plan(*curve);
+    for (const bool fast_path : {true, false}) {
+      const PointResult r = invert_point(plan, c.point, InvertOptions{.fast_path = fast_path});
+      EXPECT_EQ(r.status, Status::double_point) << curve->id << " (" << c.point.x << ", " << c.point.y << "): t " << r.t;
+      if (r.status == Status::double_point) {
+        EXPECT_NEAR(r.t, c.t, 1e-9);
+        EXPECT_NEAR(r.t2, c.t2, 1e-9);
+      }
+    }
+  }
+}
+
 // ---- 9. slow branches at an end ---------------------------------------------------------------------
 
 // rational_bezier with the first weight 1e-12 .. 1e12 of the others (random in [0.5, 2]), degree
