@@ -117,6 +117,24 @@ void BM_Machine_Copy(benchmark::State& state) {
   state.SetBytesProcessed(static_cast<std::int64_t>(2 * state.iterations() * kStreamBytes));
 }
 
+// A row per point, from the point and nothing else, in chunks of 2^16 over the arena's threads.
+void write_rows(tbb::task_arena& arena, const std::vector<bezinv::Point>& points, bezinv::PointResult* results) {
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1 << 16), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        bezinv::PointResult& r = results[i];
+        r.t = points[i].x;
+        r.residual = points[i].y;
+        r.t2 = r.sigma_next = bezinv::PointResult::nan;
+        r.sigma_min = points[i].x * points[i].y;
+        r.status = bezinv::Status::ok;
+        r.path = bezinv::Path::bezout_lu;
+        r.reason = "";
+      }
+    });
+  });
+}
+
 // 2^24 points (256 MiB in, 896 MiB out), on range(0) threads (a TBB arena, as the engine's).
 void BM_Machine_PointsToResults(benchmark::State& state) {
   constexpr std::size_t kPoints = std::size_t{1} << 24;
@@ -124,20 +142,7 @@ void BM_Machine_PointsToResults(benchmark::State& state) {
   static std::vector<bezinv::PointResult> results(kPoints);
   tbb::task_arena arena(static_cast<int>(state.range(0)));
   for (auto _ : state) {
-    arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kPoints, 1 << 16), [&](const auto& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-          bezinv::PointResult& r = results[i];
-          r.t = points[i].x;
-          r.residual = points[i].y;
-          r.t2 = r.sigma_next = bezinv::PointResult::nan;
-          r.sigma_min = points[i].x * points[i].y;
-          r.status = bezinv::Status::ok;
-          r.path = bezinv::Path::bezout_lu;
-          r.reason = "";
-        }
-      });
-    });
+    write_rows(arena, points, results.data());
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kPoints));
@@ -161,20 +166,7 @@ void BM_Machine_PointsToFreshResults(benchmark::State& state) {
     }
     if (state.range(1) == 1) madvise(mapped, kBytes, MADV_HUGEPAGE);
     auto* results = static_cast<bezinv::PointResult*>(mapped);
-    arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kPoints, 1 << 16), [&](const auto& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-          bezinv::PointResult& r = results[i];
-          r.t = points[i].x;
-          r.residual = points[i].y;
-          r.t2 = r.sigma_next = bezinv::PointResult::nan;
-          r.sigma_min = points[i].x * points[i].y;
-          r.status = bezinv::Status::ok;
-          r.path = bezinv::Path::bezout_lu;
-          r.reason = "";
-        }
-      });
-    });
+    write_rows(arena, points, results);
     benchmark::ClobberMemory();
     munmap(mapped, kBytes);
   }
