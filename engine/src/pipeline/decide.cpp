@@ -161,21 +161,24 @@ void decide(const PlanData& plan, double u0, double v0, const Candidate& main, c
       // an ill-conditioned B): every real one from the span of the k last.
       const int k = std::min(numerical_nullity(sigma, n), std::min(kMaxNullSpaceDimension, n - 1));
       std::array<double, kMaxDegree> t;
+      auto add_roots = [&](int roots) {
+        for (int i = 0; i < roots; ++i) add(t[i], Path::bezout_pair);
+      };
+      // The parameters whose Bernstein vector lies in the plane of the two last singular vectors.
+      auto plane_roots = [&] {
+        return parameters_from_null_space(std::span<const double>(V + (n - 1) * n, n),
+                                          std::span<const double>(V + (n - 2) * n, n), t.data());
+      };
       const int roots =
-          k <= 2 ? parameters_from_null_space(std::span<const double>(V + (n - 1) * n, n),
-                                              std::span<const double>(V + (n - 2) * n, n), t.data())
+          k <= 2 ? plane_roots()
                  : parameters_from_null_space(std::span<const double>(V + (n - k) * n, static_cast<std::size_t>(k) * n),
                                               k, t);
-      for (int i = 0; i < roots; ++i) add(t[i], Path::bezout_pair);
+      add_roots(roots);
       // Near a cusp with a small loop (two parameters of a double point close together) a third
       // singular value can fall below the threshold too, and the roots of the k-dimensional space
       // miss the second parameter that the plane of the two last singular vectors gives (stress:
       // 20 such points of one degree-8 curve answered ok). Its roots are candidates as well.
-      if (k > 2 && roots < 2) {
-        const int plane_roots = parameters_from_null_space(std::span<const double>(V + (n - 1) * n, n),
-                                                           std::span<const double>(V + (n - 2) * n, n), t.data());
-        for (int i = 0; i < plane_roots; ++i) add(t[i], Path::bezout_pair);
-      }
+      if (k > 2 && roots < 2) add_roots(plane_roots());
     }
   }
 
