@@ -52,6 +52,33 @@ Poly reduced(const Poly& p) {
   return r;
 }
 
+// How far r, p reduced by one degree or more, is from p: r elevated back to p's degree, the
+// largest difference of their Bernstein coefficients (which bounds the difference of the two
+// polynomials on [0, 1]: the Bernstein basis sums to 1).
+double reduction_change(const Poly& p, Poly r) {
+  while (r.size() < p.size()) {
+    Poly q(r.size() + 1);
+    elevate_degree(r, q);
+    r = std::move(q);
+  }
+  double change = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) change = std::max(change, std::abs(r[i] - p[i]));
+  return change;
+}
+
+// Whether the reduction moves p by no more than rounding of its coefficients can: ratio times
+// the larger of its largest coefficient and `magnitude` (leading_coefficient_vanishes' measure of
+// the same rounding, per coefficient instead of summed into the leading one). The test on the
+// leading coefficient alone is necessary but not enough: a degree-13 curve 1.3 wide at
+// x = -6.5e11 has leading power coefficients of 5 and 9 against a bound of ~19, and its reduction
+// moved it by 46-84 ulps of its coordinates, where a curve elevated and rounded to doubles moves
+// by about 3 (docs/accuracy-model.md, "Degree-elevated curves").
+bool reduction_within_rounding(double change, const Poly& p, double magnitude, double ratio) {
+  double largest = magnitude;
+  for (double c : p) largest = std::max(largest, std::abs(c));
+  return change <= ratio * largest;
+}
+
 // The control points whose bounding box sets the curve's size: (num_i / den_i) where the
 // denominator coefficient is non-zero, plus the curve's two end points (for kind `rational` the
 // ratios need not bound the curve, the ends always lie on it).
@@ -255,11 +282,39 @@ PlanData make_plan_data(const Curve& given) {
   // "root at infinity") at every point. Reduce until one of them is genuinely non-zero.
   // A rotation mixes x and y, so either numerator may carry either coordinate's rounding.
   const double magnitude_num = plan.common_denominator ? magnitude_x + magnitude_y : std::max(magnitude_x, magnitude_y);
+  // Each reduction is checked against the curve as given (not the step before), so that the
+  // steps' changes cannot add up unseen.
+  const Poly xn0 = xn, xd0 = xd, yn0 = yn, yd0 = yd;
+  double numerator_change = 0, denominator_change = 0;
   while (xn.size() > 2 && leading_coefficient_vanishes(xn, magnitude_num, kElevatedLeadingRatio) &&
          leading_coefficient_vanishes(xd, 0.0, kElevatedLeadingRatio) &&
          leading_coefficient_vanishes(yn, magnitude_num, kElevatedLeadingRatio) &&
          leading_coefficient_vanishes(yd, 0.0, kElevatedLeadingRatio)) {
-    xn = reduced(xn); xd = reduced(xd); yn = reduced(yn); yd = reduced(yd);
+    Poly rxn = reduced(xn), rxd = reduced(xd), ryn = reduced(yn), ryd = reduced(yd);
+    const double cxn = reduction_change(xn0, rxn), cyn = reduction_change(yn0, ryn);
+    const double cxd = reduction_change(xd0, rxd), cyd = reduction_change(yd0, ryd);
+    if (!(reduction_within_rounding(cxn, xn0, magnitude_num, kElevatedLeadingRatio) &&
+          reduction_within_rounding(cyn, yn0, magnitude_num, kElevatedLeadingRatio) &&
+          reduction_within_rounding(cxd, xd0, 0.0, kElevatedLeadingRatio) &&
+          reduction_within_rounding(cyd, yd0, 0.0, kElevatedLeadingRatio)))
+      break;
+    xn = std::move(rxn); xd = std::move(rxd); yn = std::move(ryn); yd = std::move(ryd);
+    numerator_change = std::max(cxn, cyn);
+    denominator_change = std::max(cxd, cyd);
+  }
+  // The plan's curve is then within (its numerators' change + its denominators' change times
+  // |P|) / W of the given one, W the smallest denominator coefficient and |P| at most the
+  // normalized diagonal (the control points' box, centred at the origin; a rotation keeps
+  // lengths): the on-curve tolerance's floor takes it in, so that a point on the given curve is
+  // within the tolerance of the plan's. (With a coefficient W <= 0 no such bound holds; such a
+  // curve's reduction moved it by no more than rounding of its coefficients, as above.)
+  if (numerator_change > 0 || denominator_change > 0) {
+    double smallest = std::numeric_limits<double>::infinity();
+    for (const Poly* w : {&xd, &yd})
+      for (double c : *w) smallest = std::min(smallest, c);
+    if (smallest > 0)
+      plan.normalized_resolution +=
+          (numerator_change + denominator_change * plan.normalized_diagonal) / smallest;
   }
   const int n = static_cast<int>(xn.size()) - 1;
   plan.degree = n;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "support/curve_kinds.hpp"
+#include "bezinv/bernstein.hpp"
 #include "bezinv/curve.hpp"
 #include "bezinv/datasets/curve_sampling.hpp"
 #include "bezinv/datasets/random_curve.hpp"
@@ -433,6 +434,78 @@ TEST(OrdinaryFarAndHostile, FarPointsAreOffCurveAtTheNearestDistance) {
         test_support::expect_batched_as_single(findings, name.str(), plan, points, results);
       }
   EXPECT_GT(findings.points(), 900);
+}
+
+// A degree-13 Bezier curve 1.3 wide at x = -6.5e11, y = 1.1e8 (map coordinates in metres; found by
+// `bezinv stress`, family `translated`): its x coordinates are resolved to 1.2e-4, a ten-thousandth
+// of its size, and its top power coefficients (5 and 9 in the plan's units) are its own, but below
+// the bound on what rounding leaves in an elevated curve's (~19 here). Reduced a degree on that
+// test alone, the curve moved by 46-84 ulps of its coordinates, beyond the tolerance's floor of 4,
+// and points on it were answered off_curve with a residual of 1.9e-3 where they are within 1e-4.
+// Each point P(t), exact and rounded to doubles (so within half an ulp of the curve), must be ok at
+// t, its residual the exact distance from the point to the curve at the answer's t (to the rounding
+// of a curve of size 1: the engine works relative to its centre). Beside it a cubic at the same
+// place, elevated in double to degree 13 as a CAD system would, must still be reduced to degree 3
+// and invert the same way, its residual then to the reduction's change, within the 4 ulps of the
+// coordinates that the tolerance's floor takes in (kResolutionUlps).
+TEST(OrdinaryFarAndHostile, AHighDegreeCurveAtMapCoordinatesKeepsItsDegree) {
+  using Polygon = std::vector<std::array<double, 2>>;
+  const Polygon map_polygon = {
+      {-648941687922.5154, 107826478.32723422},
+      {-648941687922.5609, 107826478.38990588},
+      {-648941687922.4658, 107826478.46142513},
+      {-648941687922.5425, 107826478.73565365},
+      {-648941687922.5577, 107826478.84681545},
+      {-648941687922.6968, 107826478.82972407},
+      {-648941687922.7762, 107826478.8709658},
+      {-648941687922.9124, 107826479.03192131},
+      {-648941687923.1357, 107826479.05661553},
+      {-648941687923.2463, 107826478.93593836},
+      {-648941687923.3499, 107826478.91143468},
+      {-648941687923.3828, 107826478.76433915},
+      {-648941687923.5088, 107826478.68955927},
+      {-648941687923.5414, 107826478.47975317}};
+  const Polygon cubic = {{-648941687922.5, 107826478.3},
+                        {-648941687922.1, 107826479.3},
+                        {-648941687921.6, 107826479.5},
+                        {-648941687921.2, 107826478.4}};
+  std::vector<double> x, y;
+  for (const auto& p : cubic) x.push_back(p[0]), y.push_back(p[1]);
+  while (x.size() < map_polygon.size()) {  // elevated in double, rounded at the coordinates' ulp
+    std::vector<double> ex(x.size() + 1), ey(y.size() + 1);
+    elevate_degree(x, ex);
+    elevate_degree(y, ey);
+    x = ex, y = ey;
+  }
+  Polygon elevated_polygon;
+  for (std::size_t i = 0; i < x.size(); ++i) elevated_polygon.push_back({x[i], y[i]});
+  const double ulp_x = 0x1p-13;  // of 6.5e11
+  struct Case {
+    Curve curve;
+    int degree;
+    double residual_bound;
+  };
+  for (const auto& [curve, degree, residual_bound] :
+       {Case{Curve::bezier("map", map_polygon), 13, 1e-12},
+        Case{Curve::bezier("elevated cubic", elevated_polygon), 3, kResolutionUlps * ulp_x}}) {
+    const InversionPlan plan = make_plan(curve);
+    EXPECT_EQ(plan.degree(), degree) << curve.id;
+    const ExactCurve exact(curve);
+    Findings findings(curve.id + " at x = -6.5e11");
+    for (int i = 1; i < 100; ++i) {
+      const double t = i / 100.0;
+      const KnownParameter k = known_at(exact, t);
+      const PointResult r = invert_point(plan, k.point);
+      // The point is within half an ulp of P(t) in each coordinate: its nearest point within that
+      // over the speed, twice over (and the plan's curve within residual_bound of the given one).
+      const auto ulp = [](double v) { return std::nextafter(std::abs(v), INFINITY) - std::abs(v); };
+      const double rounding = std::hypot(0.5 * ulp(k.point.x), 0.5 * ulp(k.point.y));
+      findings.count();
+      findings.check(r.status == Status::ok && std::abs(r.t - t) <= (2 * rounding + residual_bound) / k.speed + 1e-12 &&
+                         std::abs(r.residual - exact.distance(r.t, k.point)) <= residual_bound,
+                     [&] { return curve.id + ": " + test_support::describe(k, r); });
+    }
+  }
 }
 
 }  // namespace
