@@ -498,10 +498,13 @@ TEST(OrdinaryFarAndHostile, AHighDegreeCurveAtMapCoordinatesKeepsItsDegree) {
       const PointResult r = invert_point(plan, k.point);
       // The point is within half an ulp of P(t) in each coordinate: its nearest point within that
       // over the speed, twice over (and the plan's curve within residual_bound of the given one).
-      const auto ulp = [](double v) { return std::nextafter(std::abs(v), INFINITY) - std::abs(v); };
+      const auto ulp = [](double v) {
+        return std::nextafter(std::abs(v), std::numeric_limits<double>::infinity()) - std::abs(v);
+      };
       const double rounding = std::hypot(0.5 * ulp(k.point.x), 0.5 * ulp(k.point.y));
+      const double t_bound = (2 * rounding + residual_bound) / k.speed + 1e-12;
       findings.count();
-      findings.check(r.status == Status::ok && std::abs(r.t - t) <= (2 * rounding + residual_bound) / k.speed + 1e-12 &&
+      findings.check(r.status == Status::ok && std::abs(r.t - t) <= t_bound &&
                          std::abs(r.residual - exact.distance(r.t, k.point)) <= residual_bound,
                      [&] { return curve.id + ": " + test_support::describe(k, r); });
     }
