@@ -66,19 +66,6 @@ double reduction_change(const Poly& p, Poly r) {
   return change;
 }
 
-// Whether the reduction moves p by no more than rounding of its coefficients can: ratio times
-// the larger of its largest coefficient and `magnitude` (leading_coefficient_vanishes' measure of
-// the same rounding, per coefficient instead of summed into the leading one). The test on the
-// leading coefficient alone is necessary but not enough: a degree-13 curve 1.3 wide at
-// x = -6.5e11 has leading power coefficients of 5 and 9 against a bound of ~19, and its reduction
-// moved it by 46-84 ulps of its coordinates, where a curve elevated and rounded to doubles moves
-// by about 3 (docs/accuracy-model.md, "Degree-elevated curves").
-bool reduction_within_rounding(double change, const Poly& p, double magnitude, double ratio) {
-  double largest = magnitude;
-  for (double c : p) largest = std::max(largest, std::abs(c));
-  return change <= ratio * largest;
-}
-
 // The control points whose bounding box sets the curve's size: (num_i / den_i) where the
 // denominator coefficient is non-zero, plus the curve's two end points (for kind `rational` the
 // ratios need not bound the curve, the ends always lie on it).
@@ -282,9 +269,18 @@ PlanData make_plan_data(const Curve& given) {
   // "root at infinity") at every point. Reduce until one of them is genuinely non-zero.
   // A rotation mixes x and y, so either numerator may carry either coordinate's rounding.
   const double magnitude_num = plan.common_denominator ? magnitude_x + magnitude_y : std::max(magnitude_x, magnitude_y);
-  // Each reduction is checked against the curve as given (not the step before), so that the
-  // steps' changes cannot add up unseen.
+  // The test on the leading coefficients alone is necessary but not enough: a degree-13 curve 1.3
+  // wide at x = -6.5e11 has leading power coefficients of 5 and 9 against a bound of ~19, and its
+  // reduction moved it by 46-84 ulps of its coordinates, where a curve elevated and rounded to
+  // doubles moves by about 3 (docs/accuracy-model.md, "Effective degree"). So a reduction is kept
+  // only where it moves no coefficient by more than rounding of it can: the same ratio times the
+  // larger of the largest coefficient and `magnitude` (the leading test's measure of that rounding,
+  // per coefficient instead of summed into the leading one). Each is checked against the curve as
+  // given (not the step before), so that the steps' changes cannot add up unseen.
   const Poly xn0 = xn, xd0 = xd, yn0 = yn, yd0 = yd;
+  const double rounding_xn = kElevatedLeadingRatio * std::max(max_abs(xn0), magnitude_num);
+  const double rounding_yn = kElevatedLeadingRatio * std::max(max_abs(yn0), magnitude_num);
+  const double rounding_xd = kElevatedLeadingRatio * max_abs(xd0), rounding_yd = kElevatedLeadingRatio * max_abs(yd0);
   double numerator_change = 0, denominator_change = 0;
   while (xn.size() > 2 && leading_coefficient_vanishes(xn, magnitude_num, kElevatedLeadingRatio) &&
          leading_coefficient_vanishes(xd, 0.0, kElevatedLeadingRatio) &&
@@ -293,11 +289,7 @@ PlanData make_plan_data(const Curve& given) {
     Poly rxn = reduced(xn), rxd = reduced(xd), ryn = reduced(yn), ryd = reduced(yd);
     const double cxn = reduction_change(xn0, rxn), cyn = reduction_change(yn0, ryn);
     const double cxd = reduction_change(xd0, rxd), cyd = reduction_change(yd0, ryd);
-    if (!(reduction_within_rounding(cxn, xn0, magnitude_num, kElevatedLeadingRatio) &&
-          reduction_within_rounding(cyn, yn0, magnitude_num, kElevatedLeadingRatio) &&
-          reduction_within_rounding(cxd, xd0, 0.0, kElevatedLeadingRatio) &&
-          reduction_within_rounding(cyd, yd0, 0.0, kElevatedLeadingRatio)))
-      break;
+    if (!(cxn <= rounding_xn && cyn <= rounding_yn && cxd <= rounding_xd && cyd <= rounding_yd)) break;
     xn = std::move(rxn); xd = std::move(rxd); yn = std::move(ryn); yd = std::move(ryd);
     numerator_change = std::max(cxn, cyn);
     denominator_change = std::max(cxd, cyd);
