@@ -4,7 +4,9 @@
 // implementation, at points on the curve (made exactly from a known t), near it, off it, and at
 // the points where neither is used (beyond kFormulaPathMaxCoordinate, NaN, infinite); on the curve
 // both are the known t to the formula's accuracy (its segment_error). Where the default takes it:
-// a call with enough points to repay making the formula.
+// a call with enough points to repay making the formula. And a fast conic whose refinement on the
+// formula path leaves points to the off-curve Newton kernel: every algebraic step within the
+// accuracy model (tests/support/known_parameter.hpp).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -12,6 +14,8 @@
 #include <limits>
 #include <random>
 #include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "bezinv/datasets/on_curve_points.hpp"
@@ -81,6 +85,44 @@ TEST(FormulaPath, TheKernelGivesFormulaParametersBitsAtEveryDegree) {
 // kCurveFormulaMinPoints[n] points (its making then repaid), and the Bezout path for fewer, with
 // the same statuses and t to the accuracy bound either way; the rows do not depend on the thread
 // count. Points made from known parameters.
+// A conic with weights 1e-4 to 1e2 apart and x and y each their own denominator (the stress tool
+// drew it): near its light end it moves fast (|P'| ~3e3 at t = 2e-5, the diagonal ~0.7) and bends
+// faster (|P''| ~2.5e8). A point there that the formula path's refinement leaves to the off-curve
+// Newton kernel (its first distance beyond 1e-10) must still end where its rounding puts it, on
+// every algebraic step; the point at 1.9930388346245394e-05 ended 9.5e-16 off in t (10x the bound),
+// residual 2.7e-12, when that kernel's last step of up to 1e-9 did not ask how much the curve
+// bends over it (docs/kernels.md, nearest_newton).
+TEST(FormulaPath, AFastConicNearItsLightEndOnEveryAlgebraicStep) {
+  Curve curve;
+  curve.kind = CurveKind::rational;
+  curve.x_num = {1.5235207977554004e-05, 28.289328656690962, 0.00012186585351739298};
+  curve.x_den = {0.0002863833741572606, 49.46298107028977, 0.00016343760945792746};
+  curve.y_num = {0.6694301138497353, 5.8761194841126345e-06, 93.99434020080926};
+  curve.y_den = {0.7671702712751561, 0.00012677404638355, 106.67998163362664};
+  const test_support::ExactCurve exact(curve);
+  const auto plan = make_plan(curve);
+  ASSERT_TRUE(plan.usable()) << plan.reason();
+  std::vector<double> parameters{1.9930388346245394e-05};
+  for (int k = 0; k < 40; ++k) {
+    const double from_end = std::pow(10.0, -6.0 + 3.0 * k / 40.0);
+    parameters.push_back(k % 2 ? 1.0 - from_end : from_end);
+  }
+  std::vector<Point> points;
+  std::vector<test_support::KnownParameter> known;
+  for (const double t : parameters) {
+    known.push_back(test_support::known_at(exact, t));
+    points.push_back(known.back().point);
+  }
+  const std::pair<Algebraic, const char*> steps[] = {
+      {Algebraic::formula, "formula"}, {Algebraic::automatic, "automatic"}, {Algebraic::bezout, "bezout"}};
+  for (const auto& [algebraic, step] : steps) {
+    test_support::Findings findings(std::string("fast conic, algebraic ") + step);
+    std::vector<PointResult> rows(points.size());
+    invert(plan, points, rows, {.threads = 1, .algebraic = algebraic});
+    for (std::size_t k = 0; k < points.size(); ++k) test_support::expect_known(findings, "conic", exact, known[k], rows[k]);
+  }
+}
+
 TEST(FormulaPath, AutomaticTakesTheCurvesFormulaForACallThatRepaysMakingIt) {
   std::mt19937_64 rng(29);
   std::uniform_real_distribution<double> parameter(0.0, 1.0);

@@ -7,6 +7,7 @@
 // engine's scalar refinement bit for bit; the Horner jets give every implementation the same bits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -142,6 +143,75 @@ TEST(RationalNewton, OnCurvePointsFromNearbyStarts) {
     std::printf("%s%s: worst |t - t_true| %s, worst distance %s\n", std::string(implementation->name).c_str(),
                 name(variant).c_str(), sci(worst_t).c_str(), sci(worst_distance).c_str());
   }
+}
+
+// Curves with weights 1e-4 to 1e2 apart, x and y each their own denominator: near a light end the
+// curve moves fast (|P'| ~3e3 where the diagonal is ~1) and bends faster (|P''| ~1e8 |P'|), so a
+// Newton step of 1e-10 leaves t ~1e-15 off, and a step of 4 eps in t moves P by ~3e-12. Points
+// made exactly at a known t near that end (the first, a curve the stress tool drew), started 1e-9
+// to 1e-15 from it on either side, as the formula's or B's t starts them: each kernel must end
+// where the point's own rounding puts it, |t - t_true| <= 8 eps max(1, |P|) / |P'| + 8 eps t.
+TEST(RationalNewton, FastCurvesNearAHeavyWeightEndWhereThePointsRoundingPutsThem) {
+  std::vector<TestCurve> curves;
+  {
+    TestCurve c;
+    c.x_num = {1.5235207977554004e-05, 28.289328656690962, 0.00012186585351739298};
+    c.x_den = {0.0002863833741572606, 49.46298107028977, 0.00016343760945792746};
+    c.y_num = {0.6694301138497353, 5.8761194841126345e-06, 93.99434020080926};
+    c.y_den = {0.7671702712751561, 0.00012677404638355, 106.67998163362664};
+    c.horner = horner_layout(2, {&c.x_num, &c.x_den, &c.y_num, &c.y_den});
+    c.exact = {exact::to_exact(c.x_num), exact::to_exact(c.x_den), exact::to_exact(c.y_num),
+               exact::to_exact(c.y_den)};
+    curves.push_back(c);
+  }
+  std::mt19937_64 rng(20261206);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0), exponent(-4.0, 2.0);
+  for (int n = 2; n <= 5; ++n)
+    for (int k = 0; k < 3; ++k) {
+      TestCurve c;
+      for (int i = 0; i <= n; ++i) {
+        // The ends light, the inner weights heavy: the curve hurries away from its ends.
+        const double w = std::pow(10.0, (i == 0 || i == n) ? -4.0 + 0.5 * exponent(rng) / 3 : exponent(rng) + 1);
+        const double wy = std::pow(10.0, (i == 0 || i == n) ? -4.0 : exponent(rng) + 1);
+        c.x_num.push_back(w * coordinate(rng)), c.x_den.push_back(w);
+        c.y_num.push_back(wy * coordinate(rng)), c.y_den.push_back(wy);
+      }
+      c.horner = horner_layout(n, {&c.x_num, &c.x_den, &c.y_num, &c.y_den});
+      c.exact = {exact::to_exact(c.x_num), exact::to_exact(c.x_den), exact::to_exact(c.y_num),
+                 exact::to_exact(c.y_den)};
+      curves.push_back(c);
+    }
+  std::uniform_real_distribution<double> near_end(-6.0, -4.0);
+  for (const Variant variant : kVariants)
+    for (const Implementation* implementation : available_implementations()) {
+      double worst = 0;  // |t - t_true| over its bound
+      for (std::size_t ci = 0; ci < curves.size(); ++ci) {
+        const TestCurve& c = curves[ci];
+        std::mt19937_64 draws(ci);
+        Lanes lanes;
+        std::vector<double> truth, bound;
+        for (int k = 0; k < 28; ++k) {
+          const double from_end = std::pow(10.0, near_end(draws));
+          const double t_true = k % 4 < 2 ? from_end : 1.0 - from_end;
+          const Exact p = at(c, t_true);
+          const double speed = std::hypot(p.dx, p.dy), eps = std::numeric_limits<double>::epsilon();
+          const double offset = (k % 2 ? 1 : -1) * std::pow(10.0, -9.0 - (k / 4) % 7);
+          lanes.add(p.x, p.y, std::clamp(t_true + offset, 0.0, 1.0));
+          truth.push_back(t_true);
+          bound.push_back(8 * eps * std::max({1.0, std::abs(p.x), std::abs(p.y)}) / speed + 8 * eps * t_true);
+        }
+        lanes.run(*implementation, c, variant);
+        for (std::size_t l = 0; l < truth.size(); ++l) {
+          SCOPED_TRACE(std::string(implementation->name) + name(variant) + " curve " + std::to_string(ci) +
+                       " lane " + std::to_string(l) + " t_true " + sci(truth[l]));
+          ASSERT_FALSE(std::isnan(lanes.distance[l]));
+          EXPECT_LE(std::abs(lanes.t[l] - truth[l]), bound[l]) << "t " << sci(lanes.t[l]);
+          worst = std::max(worst, std::abs(lanes.t[l] - truth[l]) / bound[l]);
+        }
+      }
+      std::printf("%s%s: worst |t - t_true| / bound %s\n", std::string(implementation->name).c_str(),
+                  name(variant).c_str(), sci(worst).c_str());
+    }
 }
 
 // Points off the curve along its normal at t_star: P(t_star) + delta N, with delta below half the

@@ -81,8 +81,8 @@ inline constexpr double kNewtonTrustedStep = 1e-6;
 // ulp unless the curve all but stops; its distance is the first-order update of the last one.
 inline constexpr double kNewtonFinalStep = 1e-12;
 // The off-curve path's Newton kernel (nearest_newton) takes a step this small as its last where
-// the distance is convex: Newton converges quadratically there, and what remains, about
-// |f''/2f'| 1e-18, is below t's ulp for any but an all but stationary curve.
+// the distance is convex and s^2 |P''| is below rounding: Newton converges quadratically there, and
+// what remains, about |f''/2f'| s^2, moves P by about s^2 |P''| (docs/kernels.md).
 inline constexpr double kNearestNewtonFinalStep = 1e-9;
 // On the formula path (engine/src/pipeline/formula_path.hpp) the refinement takes a step this small
 // as its last, where the curve is flat enough over it (|P''| s^2 below rounding, the kernel's

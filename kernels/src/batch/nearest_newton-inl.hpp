@@ -11,11 +11,11 @@
 //   - the descent test (of steps above settings.trusted_step) folded into the next jet (its value is the distance there): a step that
 //     made the distance larger is halved back from the point it left, instead of a separate
 //     evaluation of the distance before every large step;
-//   - the last step taken once it is at most settings.final_step where f' >= |P'|^2 / 2: Newton
-//     converges quadratically there, so what remains after it is about |f'' / 2 f'| s^2 (1e-18 in
-//     t for s = 1e-9 and a moderate curvature), and the distance after it comes from the jet's
-//     Taylor polynomial, |E + P' s + P'' s^2 / 2|, instead of one more iteration that only
-//     confirms it.
+//   - the last step taken once it is at most settings.final_step where f' >= |P'|^2 / 2 and
+//     s^2 |P''| is below rounding: Newton converges quadratically there, so what remains after it
+//     is about |f'' / 2 f'| s^2 (1e-18 in t for s = 1e-9 and a moderate curvature; P moves by
+//     ~s^2 |P''| whatever the curvature), and the distance after it comes from the jet's Taylor
+//     polynomial, |E + P' s + P'' s^2 / 2|, instead of one more iteration that only confirms it.
 // Every implementation gives the same bits: the portable targets fuse with std::fma (one rounding,
 // as the SIMD targets' multiply-add instructions), and the file is compiled with
 // -ffp-contract=off so that the compiler fuses nothing else.
@@ -136,6 +136,8 @@ HWY_NOINLINE void group(D d, const Curve& curve, const NearestNewtonSettings& se
   const V max_step = hn::Set(d, settings.max_step), final_step = hn::Set(d, settings.final_step);
   const V trusted = hn::Set(d, settings.trusted_step);
   const V four_eps = hn::Set(d, 4 * std::numeric_limits<double>::epsilon());
+  const V eps = hn::Set(d, std::numeric_limits<double>::epsilon());
+  const V sixteen_eps2 = hn::Mul(four_eps, four_eps);
   const V max_halvings = hn::Set(d, settings.max_halvings);
 
   M active = hn::And(hn::Ge(t0, zero), hn::Le(t0, one));  // false for NaN
@@ -189,16 +191,27 @@ HWY_NOINLINE void group(D d, const Curve& curve, const NearestNewtonSettings& se
     const V moved = hn::Abs(s);
     const M moving = hn::And(here, active);
 
-    // The last step: its distance by the jet's Taylor polynomial at t.
-    const M last = hn::And(moving, hn::And(hn::Le(moved, final_step), hn::Ge(slope, hn::Mul(half, speed2))));
-    if (!hn::AllFalse(d, last)) {
+    // The last step: its distance by the jet's Taylor polynomial at t. Not where s^2 |P''| exceeds
+    // the rounding (rational_newton's test): what Newton leaves of t, ~|f''/2f'| s^2 with
+    // |f''/f'| ~ 3 |P''| / |P'|, then moves P by ~s^2 |P''|, which near a heavy weight (|P''| 1e8
+    // times |P'|) is not below t's resolution; the lane takes one more step instead.
+    const M flat = hn::Le(hn::Mul(hn::Mul(s, s), hn::Add(hn::Abs(ddx), hn::Abs(ddy))), eps);
+    const M last = hn::And(hn::And(moving, flat),
+                           hn::And(hn::Le(moved, final_step), hn::Ge(slope, hn::Mul(half, speed2))));
+    // Converged without that (at an end of the segment, or where the distance is not convex): at t,
+    // but where the step still moves P by more than a few ulps (|P'| s > 4 eps: a fast curve, |P'|
+    // 1e3 and more), at the new t with the last step's distance, as rational_newton measures it
+    // there: stopped before it, P would be off by up to 4 eps |P'|.
+    const M still = hn::AndNot(last, moving);
+    const M converged = hn::And(still, hn::Le(moved, hn::Mul(four_eps, hn::Max(one, hn::Abs(t)))));
+    const M fast = hn::And(converged, hn::Gt(hn::Mul(hn::Mul(moved, moved), speed2), sixteen_eps2));
+    finish(hn::AndNot(fast, converged), t, h);
+    const M taylor = hn::Or(last, fast);
+    if (!hn::AllFalse(d, taylor)) {
       const V half_s = hn::Mul(half, s);
       const V lx = fused(fused(ddx, half_s, dx), s, ex), ly = fused(fused(ddy, half_s, dy), s, ey);
-      finish(last, next, norm(lx, ly));
+      finish(taylor, next, norm(lx, ly));
     }
-    // Converged without that (at an end of the segment, or where the distance is not convex).
-    const M still = hn::AndNot(last, moving);
-    finish(hn::And(still, hn::Le(moved, hn::Mul(four_eps, hn::Max(one, hn::Abs(t))))), t, h);
     const M go = hn::And(still, active);
     t = hn::IfThenElse(go, next, t);
     step = hn::IfThenElse(go, s, step);
