@@ -132,9 +132,6 @@ inline constexpr double kFastPathMinGap = 1e-5;
 // z must have converged to this level (chord of the last two inverse iterates): it only seeds the
 // refinement, which the distance verifies ("The seed").
 inline constexpr double kFastPathMaxDefect = 1e-3;
-// The pair check skips a root of span{z, second} this close to the lane's refined t: z's own root
-// (z ~ beta(t) lies in the span), which refines back to t ("The second-parameter check").
-inline constexpr double kSameRoot = 1e-2 * kDistinctParameterGap;
 // A refined t is a stationary point of the distance where cos(P(t) - P0, P'(t)) is at most this
 // (refine.hpp, stationary_point): the nearest-point search then takes it as the one minimum of
 // its interval instead of refining again ("Off the curve, by distance").

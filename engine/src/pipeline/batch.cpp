@@ -8,7 +8,6 @@
 #include "pipeline/off_curve_path.hpp"
 #include "pipeline/form_b.hpp"
 #include "pipeline/formula_path.hpp"
-#include "pipeline/pair_check.hpp"
 #include "pipeline/seed_retry.hpp"
 #include "pipeline/stage_clock.hpp"
 #include "pipeline/svd_path.hpp"
@@ -127,20 +126,11 @@ bool invert_far_queue(const PlanData& plan, std::size_t m, const InvertOptions& 
   return decide_lanes(plan, LaneRows(gathered.data()), m, options, w, clock, /*b_formed=*/false, stages);
 }
 
-// A batch's worth of lanes (count <= kBatchLanes, run by `lanes`), with this thread's pair-check
-// queue around it: flushed first if the lanes might not fit in it, and after once enough roots
-// wait to fill a SIMD group (both outside `lanes`, whose workspace the SVD path also uses); and
-// the seed retry's queue after, once it fills the kernel's group.
+// A batch's worth of lanes (run by `lanes`), then the seed retry's queue once it fills the
+// kernel's group (outside `lanes`, whose workspace the retry also uses).
 template <typename Lanes>
-void with_queues(const PlanData& plan, std::size_t count, const InvertOptions& options, StageSeconds* stages,
-                 Lanes lanes) {
-  PairCheckQueue& pairs = pair_check_queue();
-  if (pairs.lanes + count > kPairCheckLanes) flush_pair_check_queue(plan, options, stages);
+void with_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages, Lanes lanes) {
   if (lanes() && seed_retry_queue().size >= kSeedRetryFlushLanes) flush_seed_retry_queue(plan, options, stages);
-  if (pairs.near + pairs.far >= kPairCheckFlushRoots) {
-    flush_pair_check_queue(plan, options, stages);
-    if (svd_queue().size >= kSvdGroupLanes) flush_svd_queue(plan, options, stages);
-  }
 }
 
 // Runs the seed queue's and the far queue's lanes, a batch at a time, while at least `least` wait
@@ -150,12 +140,12 @@ void run_sorted_queues(const PlanData& plan, const InvertOptions& options, Stage
   SeedQueue& seeds = seed_queue();
   while (seeds.size > 0 && seeds.size >= least) {
     const std::size_t m = std::min(seeds.size, kBatchLanes);
-    with_queues(plan, m, options, stages, [&] { return invert_seed_queue(plan, m, options, stages); });
+    with_queues(plan, options, stages, [&] { return invert_seed_queue(plan, m, options, stages); });
   }
   FarQueue& far = far_queue();
   while (far.size > 0 && far.size >= least) {
     const std::size_t m = std::min(far.size, kBatchLanes);
-    with_queues(plan, m, options, stages, [&] { return invert_far_queue(plan, m, options, stages); });
+    with_queues(plan, options, stages, [&] { return invert_far_queue(plan, m, options, stages); });
   }
 }
 
@@ -163,8 +153,7 @@ void run_sorted_queues(const PlanData& plan, const InvertOptions& options, Stage
 
 void invert_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                   const InvertOptions& options, StageSeconds* stages) {
-  with_queues(plan, count, options, stages,
-              [&] { return invert_batch_lanes(plan, points, results, count, options, stages); });
+  with_queues(plan, options, stages, [&] { return invert_batch_lanes(plan, points, results, count, options, stages); });
   if (seed_queue().size >= kBatchLanes || far_queue().size >= kBatchLanes)
     run_sorted_queues(plan, options, stages, kBatchLanes);
 }
@@ -172,7 +161,6 @@ void invert_batch(const PlanData& plan, const Point* points, PointResult* result
 void flush_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages) {
   run_sorted_queues(plan, options, stages, 1);
   flush_seed_retry_queue(plan, options, stages);
-  flush_pair_check_queue(plan, options, stages);
   flush_svd_queue(plan, options, stages);
 }
 
@@ -180,8 +168,6 @@ QueueScope::~QueueScope() {
   seed_queue().size = far_queue().size = 0;
   seed_retry_queue().size = 0;
   svd_queue().size = 0;
-  PairCheckQueue& pairs = pair_check_queue();
-  pairs.lanes = pairs.near = pairs.far = 0;
 }
 
 }  // namespace bezinv::detail

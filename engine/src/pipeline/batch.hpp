@@ -23,8 +23,8 @@ void invert_batch(const PlanData& plan, const Point* points, PointResult* result
                   const InvertOptions& options, StageSeconds* stages);
 
 // Answers every lane waiting in this thread's queues: the seed queue and the far queue first, the
-// seed retry and the pair check next (each may hand lanes to those after it), then the SVD queue. Called at the end of each range of batches, so a queue never
-// outlives the plan it was filled for.
+// seed retry next (it may hand lanes to the SVD queue), then the SVD queue. Called at the end of
+// each range of batches, so a queue never outlives the plan it was filled for.
 void flush_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages);
 
 // Empties this thread's queues when it goes out of scope: after the last flush they are empty

@@ -12,7 +12,6 @@
 #include "isolation.hpp"
 #include "orthogonal_complement.hpp"
 #include "pipeline/far_point.hpp"
-#include "pipeline/pair_check.hpp"
 #include "pipeline/point_polynomials.hpp"
 #include "pipeline/projection.hpp"
 #include "pipeline/sylvester_path.hpp"
@@ -113,13 +112,16 @@ void decide_with_gap(const PlanData& plan, BatchWorkspace& w, std::size_t l, con
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
   if (!c.on_segment) return;  // the off-curve path (off_curve_path.hpp), then the SVD path
-  // Answered now, or after the second-parameter check (flush_pair_check_queue): either way the
-  // lane leaves the batch.
-  w.active[l] = 0;
-  if ((w.estimate[stride + l] >= kFastPathGapRatio || n < 3) ||
-      (!asked && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance)) ||
-      !queue_second_parameters(n, w, l, c, &result))
+  // Below the gap the SVD path looks for a second parameter in its near-null space, of dimension
+  // 2 or more, from its exact singular vectors. The fast path's second vector is good only to
+  // sigma_{n-1} / sigma_{n-2}: where a third singular value is small too (near a cusp at high
+  // degree) the plane of z and it holds neither the second parameter nor a root near it, and a
+  // double point was answered ok. So such a lane stays active, for the SVD path.
+  if (w.estimate[stride + l] >= kFastPathGapRatio || n < 3 ||
+      (!asked && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance))) {
+    w.active[l] = 0;
     answer_fast(plan, c.t, c.distance, w.estimate[l], w.estimate[stride + l], result);
+  }
 }
 
 void decide(const PlanData& plan, double u0, double v0, const Candidate& main, const double* sigma,

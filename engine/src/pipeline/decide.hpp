@@ -4,8 +4,8 @@
 //   admit             stage 1: invalid_input (a non-finite coordinate), failed (an unusable
 //                     curve), or off_curve for a point too far to form B for (far_point.hpp)
 //   answer_fast       the fast path's ok (certified on the segment)
-//   decide_with_gap   the fast path with the kernel's sigma_{n-1} estimate: answered here, after
-//                     the second-parameter check (pair_check.hpp), or left to the SVD path
+//   decide_with_gap   the fast path with the kernel's sigma_{n-1} estimate: answered here, or
+//                     left to the SVD path
 //   off_curve_path    off_curve by distance alone, without the SVD (off_curve_path.hpp)
 //   decide            the SVD path: every status, from every candidate parameter
 // The rules are in docs/accuracy-model.md (statuses) and docs/fast-path.md (when the fast path
@@ -28,9 +28,9 @@ bool admit(const PlanData& plan, const Point& point, double u, double v, PointRe
 void answer_fast(const PlanData& plan, double t, double distance, double sigma_min, double sigma_next,
                  PointResult& r, Path path = Path::bezout_lu);
 
-// The fast path's decision for lane l, refined to c, with the kernel's gap: answered here (ok),
-// after the second-parameter check, or left active (off the segment: to the off-curve path; else
-// to the SVD path). `asked`: the isolation certificate was asked already (the gap pass) and
+// The fast path's decision for lane l, refined to c, with the kernel's gap: answered here (ok)
+// where the gap is above kFastPathGapRatio or the isolation certificate settles it, else left
+// active (off the segment: to the off-curve path; else to the SVD path). `asked`: the isolation certificate was asked already (the gap pass) and
 // refused the lane.
 void decide_with_gap(const PlanData& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
                      double tolerance, bool asked, PointResult& result);

@@ -28,13 +28,10 @@ void full_kernel(const PlanData& plan, std::size_t waiting, BatchWorkspace& w, i
   }
   kernels::active_implementation().null_vector_iterations(n, iterations, waiting, stride, w.gap_B.data(),
                                                           w.gap_z.data(), w.gap_defect.data(), w.gap_estimate.data(),
-                                                          w.gap_second.data());
+                                                          /*second=*/nullptr);
   for (std::size_t k = 0; k < waiting; ++k) {
     const std::size_t l = w.gap_lane_of[k];
-    for (int r = 0; r < n; ++r) {
-      w.z[r * stride + l] = w.gap_z[r * stride + k];
-      w.second[r * stride + l] = w.gap_second[r * stride + k];
-    }
+    for (int r = 0; r < n; ++r) w.z[r * stride + l] = w.gap_z[r * stride + k];
     w.defect[l] = w.gap_defect[k];
     w.estimate[l] = w.gap_estimate[k];
     w.estimate[stride + l] = w.gap_estimate[stride + k];
@@ -67,7 +64,7 @@ void gap_pass(const PlanData& plan, std::size_t waiting, double tolerance, Batch
 // is better seeded).
 // Returns whether it read t out too (w.t_algebraic, every lane): where it seeded some lanes only,
 // the seeded lanes' t is read from their compacted z, and no z goes back to w.z (nothing after the
-// read-out uses a seed's z: the pair check's comes from the full kernel).
+// read-out uses a seed's z).
 bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, BatchWorkspace& w,
                  std::array<double, kBatchLanes>& poison, FarLanes far) {
   const int n = plan.degree;
@@ -262,7 +259,7 @@ void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, st
                             kFastPathMaxDefect);
   } else {
     kernel.null_vector(n, count, stride, w.B.data(), w.z.data(), w.defect.data(), w.estimate.data(),
-                       w.second.data());
+                       /*second=*/nullptr);
   }
   if (!formula) {
     clock.lap(&StageSeconds::kernel);

@@ -55,7 +55,7 @@ struct FarLanes {
 bool forms_b_late(const PlanData& plan, const InvertOptions& options);
 
 // Stage 2 and the read-out for the batch's active lanes: w.t_algebraic (NaN where the seed did
-// not settle), w.defect and w.estimate per lane (with degree 2's w.z, w.second and sigma_next).
+// not settle), w.defect and w.estimate per lane (with degree 2's w.z and sigma_next).
 void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
                     const InvertOptions& options, BatchWorkspace& w, StageClock& clock, FarLanes far = {});
 
@@ -67,7 +67,7 @@ void fast_path_decide(const PlanData& plan, LaneRows rows, std::size_t count, co
 
 // The full kernel (pivoted LU, `iterations` solves: kernels::kNullVectorIterations in pass 2, more
 // for the seed retry; the sigma_{n-1} estimate) for the lanes
-// w.gap_lane_of[0..waiting), compacted, B formed for them from (w.u, w.v); its z, second vector,
+// w.gap_lane_of[0..waiting), compacted, B formed for them from (w.u, w.v); its z,
 // defect and estimates put back in their lanes.
 void full_kernel(const PlanData& plan, std::size_t waiting, BatchWorkspace& w, int iterations);
 

@@ -27,7 +27,7 @@ inline const double* bilinear_coefficients(const PlanData& plan) {
 }
 
 // B of the points (u[k], v[k]), k < m, into lanes 0..m-1 of B (stride kBatchLanes), as stage 1
-// forms it, for lanes gathered from a batch (the gap pass, the SVD path, the pair check); their
+// forms it, for lanes gathered from a batch (the gap pass, the SVD path); their
 // B did not overflow (such a lane left the pipeline when its B was first formed).
 void form_compacted_b(const PlanData& plan, const double* u, const double* v, std::size_t m, double* B);
 

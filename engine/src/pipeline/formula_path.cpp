@@ -158,7 +158,7 @@ void formula_or_seed(const PlanData& plan, const Point* points, LaneRows rows, s
                               w.gap_estimate.data(), kFastPathMaxDefect);
     else  // a conic: the pivoted kernel (its gap unused here: the gap pass decides with its own)
       kernel.null_vector(n, seeded, stride, w.gap_B.data(), w.gap_z.data(), w.gap_defect.data(),
-                         w.gap_estimate.data(), w.gap_second.data());
+                         w.gap_estimate.data(), /*second=*/nullptr);
   }
   kernel.bernstein_parameter(n, seeded, stride, w.gap_z.data(), t.data());
   std::array<double, kBatchLanes> lane_poison{};

@@ -9,7 +9,6 @@
 #include "pipeline/decide.hpp"
 #include "pipeline/fast_path.hpp"
 #include "pipeline/form_b.hpp"
-#include "pipeline/pair_check.hpp"
 #include "pipeline/svd_queue.hpp"
 
 namespace bezinv::detail {
@@ -31,8 +30,6 @@ void flush_seed_retry_queue(const PlanData& plan, const InvertOptions& options, 
   queue.size = 0;
   for (std::size_t first = 0; first < lanes; first += kBatchLanes) {
     const std::size_t m = std::min(kBatchLanes, lanes - first);
-    // The pair check may take every lane of this chunk: room for them first.
-    if (pair_check_queue().lanes + m > kPairCheckLanes) flush_pair_check_queue(plan, options, stages);
     for (std::size_t k = 0; k < m; ++k) {
       w.u[k] = queue.u[first + k], w.v[k] = queue.v[first + k];
       w.active[k] = 1;

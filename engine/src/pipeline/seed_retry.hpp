@@ -53,7 +53,7 @@ inline bool retries_seed(const BatchWorkspace& w, std::size_t l) {
 }
 
 // Runs the waiting lanes, kBatchLanes at a time, in the batch workspace (free between batches):
-// answered here, queued for the pair check, or handed to the SVD queue.
+// answered here or handed to the SVD queue.
 void flush_seed_retry_queue(const PlanData& plan, const InvertOptions& options, StageSeconds* stages);
 
 }  // namespace bezinv::detail

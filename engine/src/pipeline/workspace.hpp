@@ -87,10 +87,9 @@ struct BatchWorkspace {
   std::array<std::uint8_t, kBatchLanes> drops;      // a degree drop at the lane's point
   std::array<std::uint8_t, kBatchLanes> certified;  // pass 1: settled by the isolation certificate's first test
   std::array<Candidate, kBatchLanes> main;
-  // Fast path (LU null vector): z, the kernel's second vector, defect and the two sigma estimates
-  // (sigma_min at [l], sigma_next at [kBatchLanes + l]).
+  // Fast path (LU null vector): z, defect and the two sigma estimates (sigma_min at [l],
+  // sigma_next at [kBatchLanes + l]).
   std::vector<double> z = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
-  std::vector<double> second = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
   std::array<double, kBatchLanes> defect;
   std::array<double, 2 * kBatchLanes> estimate;
   // The formula path (formula_path.hpp): the lane's t_algebraic is the formula's, not the seed's.
@@ -99,7 +98,6 @@ struct BatchWorkspace {
   // and the full kernel's outputs for them before they go back to their lanes.
   std::vector<double> gap_B = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kMaxDegree * kBatchLanes);
   std::vector<double> gap_z = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
-  std::vector<double> gap_second = std::vector<double>(static_cast<std::size_t>(kMaxDegree) * kBatchLanes);
   std::array<double, kBatchLanes> gap_defect;
   std::array<double, 2 * kBatchLanes> gap_estimate;
   std::array<std::uint8_t, kBatchLanes> gap_lane_of;
