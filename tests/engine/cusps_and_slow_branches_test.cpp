@@ -448,6 +448,89 @@ TEST(OrdinaryCuspsAndLoops, NearCuspsFoundByTheStressToolBothBranchesWithinTheTo
   }
 }
 
+// At a tolerance 100 times the default, a point of a cubic (separate denominators) on one branch
+// with the other 0.018 away in t and within the tolerance (the stress tool, --tol 1e-4, seed 909):
+// B's sigma_{n-1}/sigma_1 is 2.6e-3, above the default's 1.1e-3 at which a second parameter is
+// looked for, and every path answered ok. Both ratios now scale with the tolerance.
+TEST(OrdinaryCuspsAndLoops, AtALargerToleranceTheOtherBranchWithinItStillMakesADoublePoint) {
+  const Curve cubic =
+      Curve::rational("cusp-3", {0.17669106648384586, 0.7733654127132282, 1.11793131276896, 0.2377520322503103},
+                      {1.751244284247197, 1.0234675422212662, 1.1735070557659326, 0.6389869078353134},
+                      {0.5628160118152689, 0.35737795553476803, 1.234049322505152, 0.6053946049043035},
+                      {1.7523526098438804, 0.5111146479149018, 1.6560671528918633, 1.0877702665064277});
+  const Point point{0.74338230572009378, 0.66956523865307438};
+  const double t = 0.6676810026391105, t2 = 0.6854553944863584, relative = 1e-4;
+  const double tolerance = relative * datasets::control_diagonal(cubic);
+  auto distance_at = [&](long double s) {
+    return static_cast<double>(datasets::distance(datasets::reference_point(cubic, s), point));
+  };
+  ASSERT_LE(distance_at(t), 1e-15);
+  ASSERT_LE(distance_at(t2), tolerance);
+  double farthest = 0;
+  for (int i = 1; i < 64; ++i) farthest = std::max(farthest, distance_at(t + (t2 - t) * i / 64.0L));
+  ASSERT_GE(farthest, 2 * tolerance);  // two branches, not one within the tolerance throughout
+  const InversionPlan plan = make_plan(cubic);
+  for (const bool fast_path : {true, false}) {
+    const PointResult r =
+        invert_point(plan, point, InvertOptions{.relative_tolerance = relative, .fast_path = fast_path});
+    EXPECT_EQ(r.status, Status::double_point)
+        << "fast path " << fast_path << ": t " << r.t << ", sigma_next " << r.sigma_next;
+    EXPECT_NEAR(r.t, t, 1e-12);
+    if (r.status == Status::double_point) {
+      EXPECT_NEAR(r.t2, t2, 1e-9);
+    }
+  }
+  // At the default tolerance the other branch is beyond it (1.4e-6 against 0.95e-6): ok.
+  EXPECT_GT(distance_at(t2), kDefaultRelativeTolerance * datasets::control_diagonal(cubic));
+  EXPECT_EQ(invert_point(plan, point).status, Status::ok);
+}
+
+// The same at degree 15 (seed 909, --tol 1e-4): points 5e-6 of the diagonal off two branches 0.015
+// apart in t, sigma_{n-1}/sigma_1 4.4e-5. Counting the null space's dimension by the larger
+// tolerance's ratio put directions that are not near-null into the pencil, whose roots then missed
+// the second parameter: the dimension counts by the default's ratio whatever the tolerance.
+TEST(OrdinaryCuspsAndLoops, AtALargerToleranceTheNullSpaceIsStillCountedAtRounding) {
+  const Curve curve =
+      Curve::rational("cusp-15",
+                      {0.7668606706360631, 0.002123330481028343, 1.2622471428505315, 0.3279467866120459,
+                       1.5221809589911994, 0.04892776806560825, 1.413867538791468, 0.7301724166600664,
+                       0.0007530694443146289, 0.35233209886601224, 0.7847827503932638, 0.34540417182953803,
+                       0.3725057855073715, 0.7289290581916489, 0.024406647463879095, 0.5148544705862841},
+                      {1.193748730409441, 1.5779992981614885, 1.3164090027353708, 1.4919327359998171,
+                       1.5729171215297633, 1.973266651308951, 1.5808229922077168, 1.5143001955456208,
+                       0.5238371866859459, 0.8821738744157759, 1.4838282432956584, 0.8467718455024156,
+                       0.8147532826487242, 1.0771877777682153, 1.3719111459636697, 1.2413634167016068},
+                      {1.1280697267490603, 0.19381499968643412, 0.9282495289766813, 1.281991395752807,
+                       0.027263034868980553, 0.4870881395702883, 1.014205454540128, 0.9535603502795059,
+                       0.0423899679401028, 0.5841490162758157, 1.4226472057384698, 0.3148898409466156,
+                       0.22278699586504308, 0.3291967495243292, 0.9220402225168017, 0.723039675956115},
+                      {1.193748730409441, 1.5779992981614885, 1.3164090027353708, 1.4919327359998171,
+                       1.5729171215297633, 1.973266651308951, 1.5808229922077168, 1.5143001955456208,
+                       0.5238371866859459, 0.8821738744157759, 1.4838282432956584, 0.8467718455024156,
+                       0.8147532826487242, 1.0771877777682153, 1.3719111459636697, 1.2413634167016068});
+  struct Case {
+    Point point;
+    double t, t2;
+  };
+  const Case cases[] = {
+      {{0.45154298212843358, 0.60685741643770186}, 0.6274140060616905, 0.6422064816505423},
+      {{0.45153610343313261, 0.60689991468013627}, 0.6279237924526351, 0.6417015485483281},
+      {{0.451547887130134, 0.60682695638415296}, 0.6270690592928835, 0.6425479570517961},
+      {{0.4515466851993154, 0.60683443209211163}, 0.6271522938218218, 0.642465573954793},
+      {{0.45154707196018962, 0.60683202735975728}, 0.6271254221720743, 0.6424921716845947},
+  };
+  const InversionPlan plan = make_plan(curve);
+  for (const Case& c : cases)
+    for (const bool fast_path : {true, false}) {
+      const PointResult r =
+          invert_point(plan, c.point, InvertOptions{.relative_tolerance = 1e-4, .fast_path = fast_path});
+      ASSERT_EQ(r.status, Status::double_point) << "(" << c.point.x << ", " << c.point.y << ") fast path " << fast_path
+                                                << ": t " << r.t << ", sigma_next " << r.sigma_next;
+      EXPECT_NEAR(std::min(r.t, r.t2), c.t, 1e-9);
+      EXPECT_NEAR(std::max(r.t, r.t2), c.t2, 1e-9);
+    }
+}
+
 // ---- 9. slow branches at an end ---------------------------------------------------------------------
 
 // rational_bezier with the first weight 1e-12 .. 1e12 of the others (random in [0.5, 2]), degree

@@ -3,6 +3,7 @@
 // The reasoning and the measurements behind them: docs/accuracy-model.md and docs/fast-path.md.
 // Change one only with the test that measures it (tests/engine/*). Numbers that only set speed
 // (batch sizes, queue lengths) sit with their code and say so.
+#include <algorithm>
 #include <limits>
 
 namespace bezinv {
@@ -127,6 +128,14 @@ inline constexpr int kFastPathMaxDegree = 32;
 // this, so at least wherever the SVD path would look (1.8 kSecondNullDirectionRatio below it; "The gap").
 inline constexpr double kFastPathGapRatio = 2e-3;
 static_assert(1.8 * kSecondNullDirectionRatio < kFastPathGapRatio);
+// Both ratios are for the default tolerance. sigma_{n-1} grows about in proportion to the distance
+// from the point to a second branch, so at a tolerance r times the default (relative to the
+// diagonal, after the floor) both are r times larger, never smaller: `bezinv stress --tol 1e-4`
+// found a cubic's point with its other branch within the tolerance at sigma_{n-1}/sigma_1 2.6e-3,
+// answered ok on every path (docs/accuracy-model.md, "The null space of dimension k").
+inline double scaled_to_tolerance(double ratio, double relative_tolerance) {
+  return std::max(ratio, ratio * (relative_tolerance / kDefaultRelativeTolerance));  // NaN -> ratio
+}
 // Below this estimate the lane may be at a double point: the SVD path decides.
 inline constexpr double kFastPathMinGap = 1e-5;
 // z must have converged to this level (chord of the last two inverse iterates): it only seeds the

@@ -20,11 +20,14 @@
 namespace bezinv::detail {
 namespace {
 
-// How many singular values, from the smallest, are at most kSecondNullDirectionRatio sigma_1
-// (sigma in decreasing order, n of them).
-int numerical_nullity(const double* sigma, int n) {
+// The tolerance relative to the normalized curve's diagonal, floor included.
+double relative_tolerance(const PlanData& plan, double tolerance) { return tolerance / plan.normalized_diagonal; }
+
+// How many singular values, from the smallest, are at most `ratio` sigma_1 (sigma in decreasing
+// order, n of them).
+int numerical_nullity(const double* sigma, int n, double ratio) {
   int k = 0;
-  while (k < n && sigma[n - 1 - k] <= kSecondNullDirectionRatio * sigma[0]) ++k;
+  while (k < n && sigma[n - 1 - k] <= ratio * sigma[0]) ++k;
   return k;
 }
 
@@ -117,7 +120,8 @@ void decide_with_gap(const PlanData& plan, BatchWorkspace& w, std::size_t l, con
   // sigma_{n-1} / sigma_{n-2}: where a third singular value is small too (near a cusp at high
   // degree) the plane of z and it holds neither the second parameter nor a root near it, and a
   // double point was answered ok. So such a lane stays active, for the SVD path.
-  if (w.estimate[stride + l] >= kFastPathGapRatio || n < 3 ||
+  const double gate = scaled_to_tolerance(kFastPathGapRatio, relative_tolerance(plan, tolerance));
+  if (w.estimate[stride + l] >= gate || n < 3 ||
       (!asked && detail::isolated(plan, w.u[l], w.v[l], c.t, c.distance, tolerance))) {
     w.active[l] = 0;
     answer_fast(plan, c.t, c.distance, w.estimate[l], w.estimate[stride + l], result);
@@ -141,7 +145,8 @@ void decide(const PlanData& plan, double u0, double v0, const Candidate& main, c
     r.sigma_min = sigma[n - 1] / sigma[0];
     r.sigma_next = sigma[n - 2] / sigma[0];
   }
-  const bool look_for_second = have_svd && n >= 3 && r.sigma_next <= kSecondNullDirectionRatio;
+  const double second_ratio = scaled_to_tolerance(kSecondNullDirectionRatio, relative_tolerance(plan, tolerance));
+  const bool look_for_second = have_svd && n >= 3 && r.sigma_next <= second_ratio;
   const PointPolynomials pq = point_polynomials(plan, u0, v0);
   const bool drop = n >= 2 && detail::degree_drops(plan, u0, v0);
   // B vanishes (a straight line through the point): its singular values are rounding, and say
@@ -160,8 +165,11 @@ void decide(const PlanData& plan, double u0, double v0, const Candidate& main, c
     } else if (have_svd && n >= 3) {
       // Nullity 2 (self-intersection, or a root driven towards infinity): both parameters from
       // the span of the two last singular vectors. Nullity k > 2 (several parameters over C, or
-      // an ill-conditioned B): every real one from the span of the k last.
-      const int k = std::min(numerical_nullity(sigma, n), std::min(kMaxNullSpaceDimension, n - 1));
+      // an ill-conditioned B): every real one from the span of the k last. The nullity counts by
+      // the default tolerance's ratio whatever the tolerance: the directions between that and a
+      // larger tolerance's are not near-null, and a pencil with them lost the second parameter
+      // that the plane gives (stress, --tol 1e-4, degree 15).
+      const int k = std::min(numerical_nullity(sigma, n, kSecondNullDirectionRatio), std::min(kMaxNullSpaceDimension, n - 1));
       std::array<double, kMaxDegree> t;
       auto add_roots = [&](int roots) {
         for (int i = 0; i < roots; ++i) add(t[i], Path::bezout_pair);
