@@ -23,11 +23,13 @@ namespace {
 // The tolerance relative to the normalized curve's diagonal, floor included.
 double relative_tolerance(const PlanData& plan, double tolerance) { return tolerance / plan.normalized_diagonal; }
 
-// How many singular values, from the smallest, are at most `ratio` sigma_1 (sigma in decreasing
-// order, n of them).
-int numerical_nullity(const double* sigma, int n, double ratio) {
+// How many singular values, from the smallest, are at most kSecondNullDirectionRatio sigma_1
+// (sigma in decreasing order, n of them), whatever the tolerance: the directions between that and
+// a larger tolerance's ratio are not near-null, and a pencil with them lost the second parameter
+// that the plane gives (stress, --tol 1e-4, degree 15; docs/accuracy-model.md).
+int numerical_nullity(const double* sigma, int n) {
   int k = 0;
-  while (k < n && sigma[n - 1 - k] <= ratio * sigma[0]) ++k;
+  while (k < n && sigma[n - 1 - k] <= kSecondNullDirectionRatio * sigma[0]) ++k;
   return k;
 }
 
@@ -165,11 +167,8 @@ void decide(const PlanData& plan, double u0, double v0, const Candidate& main, c
     } else if (have_svd && n >= 3) {
       // Nullity 2 (self-intersection, or a root driven towards infinity): both parameters from
       // the span of the two last singular vectors. Nullity k > 2 (several parameters over C, or
-      // an ill-conditioned B): every real one from the span of the k last. The nullity counts by
-      // the default tolerance's ratio whatever the tolerance: the directions between that and a
-      // larger tolerance's are not near-null, and a pencil with them lost the second parameter
-      // that the plane gives (stress, --tol 1e-4, degree 15).
-      const int k = std::min(numerical_nullity(sigma, n, kSecondNullDirectionRatio), std::min(kMaxNullSpaceDimension, n - 1));
+      // an ill-conditioned B): every real one from the span of the k last.
+      const int k = std::min(numerical_nullity(sigma, n), std::min(kMaxNullSpaceDimension, n - 1));
       std::array<double, kMaxDegree> t;
       auto add_roots = [&](int roots) {
         for (int i = 0; i < roots; ++i) add(t[i], Path::bezout_pair);
