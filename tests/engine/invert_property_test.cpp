@@ -604,7 +604,7 @@ TEST(InvertProperty, FastPathAgreesWithTheSvdPath) {
               fast_rows, rows, certified_rows, distance_rows, worst_over, gap_rows);
   EXPECT_GT(fast_rows, rows / 5);  // the comparison is not vacuous
   EXPECT_GT(certified_rows, rows / 10);
-  EXPECT_GT(gap_rows, 100u);
+  EXPECT_GT(gap_rows, 200u / test_support::kSanitizerThinning);  // 298 in Release
   EXPECT_GT(distance_rows, 40u);
   // ... and most on-branch points near a crossing are double points under those tolerances.
   EXPECT_GT(near_crossing_double, near_crossing / 2) << near_crossing_double << " of " << near_crossing;
