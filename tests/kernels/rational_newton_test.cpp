@@ -40,7 +40,7 @@ std::string name(Variant variant) { return variant == Variant::casteljau ? "" : 
 struct TestCurve {
   std::vector<double> x_num, x_den, y_num, y_den;
   exact::RationalCurve exact;
-  std::vector<double> horner;  // batch.hpp's layout, filled by random_curve
+  std::vector<double> horner;  // batch.hpp's layout, filled by completed()
   RationalCurve view(bool by_horner = false) const {
     return {static_cast<int>(x_num.size()) - 1, x_num.data(), x_den.data(), y_num.data(), y_den.data(),
             by_horner ? horner.data() : nullptr};
@@ -65,6 +65,13 @@ std::vector<double> horner_layout(int n, const std::vector<const std::vector<dou
   return out;
 }
 
+// c with what its polynomials determine: the Horner layout and the exact curve.
+TestCurve completed(TestCurve c) {
+  c.horner = horner_layout(static_cast<int>(c.x_num.size()) - 1, {&c.x_num, &c.x_den, &c.y_num, &c.y_den});
+  c.exact = {exact::to_exact(c.x_num), exact::to_exact(c.x_den), exact::to_exact(c.y_num), exact::to_exact(c.y_den)};
+  return c;
+}
+
 TestCurve random_curve(int n, std::mt19937_64& rng, bool separate = false) {
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0), weight(0.5, 2.0);
   TestCurve c;
@@ -75,9 +82,7 @@ TestCurve random_curve(int n, std::mt19937_64& rng, bool separate = false) {
     c.x_den.push_back(w);
     c.y_den.push_back(wy);
   }
-  c.horner = horner_layout(n, {&c.x_num, &c.x_den, &c.y_num, &c.y_den});
-  c.exact = {exact::to_exact(c.x_num), exact::to_exact(c.x_den), exact::to_exact(c.y_num), exact::to_exact(c.y_den)};
-  return c;
+  return completed(c);
 }
 
 struct Exact {
@@ -159,10 +164,7 @@ TEST(RationalNewton, FastCurvesNearAHeavyWeightEndWhereThePointsRoundingPutsThem
     c.x_den = {0.0002863833741572606, 49.46298107028977, 0.00016343760945792746};
     c.y_num = {0.6694301138497353, 5.8761194841126345e-06, 93.99434020080926};
     c.y_den = {0.7671702712751561, 0.00012677404638355, 106.67998163362664};
-    c.horner = horner_layout(2, {&c.x_num, &c.x_den, &c.y_num, &c.y_den});
-    c.exact = {exact::to_exact(c.x_num), exact::to_exact(c.x_den), exact::to_exact(c.y_num),
-               exact::to_exact(c.y_den)};
-    curves.push_back(c);
+    curves.push_back(completed(c));
   }
   std::mt19937_64 rng(20261206);
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0), exponent(-4.0, 2.0);
@@ -176,10 +178,7 @@ TEST(RationalNewton, FastCurvesNearAHeavyWeightEndWhereThePointsRoundingPutsThem
         c.x_num.push_back(w * coordinate(rng)), c.x_den.push_back(w);
         c.y_num.push_back(wy * coordinate(rng)), c.y_den.push_back(wy);
       }
-      c.horner = horner_layout(n, {&c.x_num, &c.x_den, &c.y_num, &c.y_den});
-      c.exact = {exact::to_exact(c.x_num), exact::to_exact(c.x_den), exact::to_exact(c.y_num),
-                 exact::to_exact(c.y_den)};
-      curves.push_back(c);
+      curves.push_back(completed(c));
     }
   std::uniform_real_distribution<double> near_end(-6.0, -4.0);
   for (const Variant variant : kVariants)
