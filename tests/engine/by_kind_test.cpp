@@ -147,7 +147,7 @@ TEST(LanesByKind, SetAsideSendsFarLanesToTheFarQueueAndNearOnesToTheSeedQueue) {
   detail::SeedQueue& seeds = detail::seed_queue();
   detail::FarQueue& far_lanes = detail::far_queue();
   seeds.size = far_lanes.size = 3;  // lanes already waiting stay first
-  ASSERT_TRUE(detail::set_aside_far(far, points.data(), results.data(), kBatchLanes, w));
+  ASSERT_TRUE(detail::set_aside_far(far, points.data(), detail::LaneRows(results.data()), kBatchLanes, w));
   ASSERT_EQ(far_lanes.size, 3 + far_of.size());
   ASSERT_EQ(seeds.size, 3 + near_of.size());
   for (std::size_t k = 0; k < far_of.size(); ++k) {
@@ -177,7 +177,7 @@ TEST(LanesByKind, SetAsideSendsFarLanesToTheFarQueueAndNearOnesToTheSeedQueue) {
   seeds.size = far_lanes.size = 0;
   for (const bool far_only : {false, true}) {
     for (std::size_t l = 0; l < kBatchLanes; ++l) w.active[l] = far.lanes.has(l) == far_only;
-    EXPECT_FALSE(detail::set_aside_far(far, points.data(), results.data(), kBatchLanes, w));
+    EXPECT_FALSE(detail::set_aside_far(far, points.data(), detail::LaneRows(results.data()), kBatchLanes, w));
     EXPECT_EQ(seeds.size + far_lanes.size, 0u);
   }
 }

@@ -7,6 +7,7 @@
 #include "pipeline/fast_path.hpp"
 #include "pipeline/off_curve_path.hpp"
 #include "pipeline/form_b.hpp"
+#include "pipeline/formula_first.hpp"
 #include "pipeline/formula_path.hpp"
 #include "pipeline/seed_retry.hpp"
 #include "pipeline/stage_clock.hpp"
@@ -71,20 +72,19 @@ bool decide_lanes(const PlanData& plan, LaneRows rows, std::size_t count, const 
   return route_undecided(plan, rows, count, options, w, clock, b_formed, stages);
 }
 
-// One batch through the stages, but for the lanes left waiting in this thread's queues.
-// Returns whether it left lanes in the seed retry's queue.
-bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
-                        const InvertOptions& options, StageSeconds* stages) {
+// Lanes through the stages, but for those left waiting in this thread's queues (rows: consecutive
+// for a batch, gathered for the lanes formula_first leaves). Returns whether it left lanes in the
+// seed retry's queue.
+bool invert_lanes(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
+                  const InvertOptions& options, StageSeconds* stages, StageClock& clock) {
   BatchWorkspace& w = batch_workspace();
-  StageClock clock(stages);
   const bool fast = takes_fast_path(plan, options);
   const bool formed_b = forms_b_late(plan, options);
-  form_batch(plan, points, results, count, /*form=*/plan.degree >= 2 && !formed_b, w);
+  form_batch(plan, points, rows, count, /*form=*/plan.degree >= 2 && !formed_b, w);
   clock.lap(&StageSeconds::form_b);
-  const LaneRows rows(results);
   if (!fast) {
     if (reports_formula_unrefined(plan, options)) {
-      formula_unrefined(plan, options, count, w, results);
+      formula_unrefined(plan, options, count, w, rows);
       clock.lap(&StageSeconds::refine);
     }
     return route_undecided(plan, rows, count, options, w, clock, !formed_b, stages);
@@ -92,13 +92,28 @@ bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
   FarLanes far;
   if (sets_far_lanes_aside(plan, options)) {
     far = far_lanes(plan, normalized_tolerance(plan, options), count, w);
-    if (set_aside_far(far, points, results, count, w)) {
+    if (set_aside_far(far, points, rows, count, w)) {
       clock.lap(&StageSeconds::read_out);
       return false;
     }
   }
   fast_path_seed(plan, points, rows, count, options, w, clock, far);
   return decide_lanes(plan, rows, count, options, w, clock, !formed_b, stages);
+}
+
+// One batch: formula_first where the plan takes it, then the stages for the lanes it leaves.
+bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+                        const InvertOptions& options, StageSeconds* stages) {
+  StageClock clock(stages);
+  if (!takes_formula_first(plan, options)) return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock);
+  std::array<std::uint8_t, kBatchLanes> left_of;
+  const std::size_t left = formula_first(plan, points, results, count, options, batch_workspace(), clock, left_of);
+  if (left == 0) return false;
+  if (left == count) return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock);
+  std::array<Point, kBatchLanes> left_points;
+  std::array<PointResult*, kBatchLanes> left_rows;
+  for (std::size_t k = 0; k < left; ++k) left_points[k] = points[left_of[k]], left_rows[k] = &results[left_of[k]];
+  return invert_lanes(plan, left_points.data(), LaneRows(left_rows.data()), left, options, stages, clock);
 }
 
 // The first m lanes of the seed queue (by_kind.hpp), as a batch before its seed.

@@ -28,7 +28,7 @@ FarLanes far_lanes(const PlanData& plan, double tolerance, std::size_t count, co
   return far;
 }
 
-bool set_aside_far(FarLanes far_from_segment, const Point* points, PointResult* results, std::size_t count,
+bool set_aside_far(FarLanes far_from_segment, const Point* points, LaneRows rows, std::size_t count,
                    const BatchWorkspace& w) {
   if (!far_from_segment.known) return false;
   LaneSet active;
@@ -38,12 +38,12 @@ bool set_aside_far(FarLanes far_from_segment, const Point* points, PointResult* 
   FarQueue& far_lanes = far_queue();
   far.for_each([&](std::size_t l) {
     const std::size_t k = far_lanes.size++;
-    far_lanes.u[k] = w.u[l], far_lanes.v[k] = w.v[l], far_lanes.target[k] = &results[l];
+    far_lanes.u[k] = w.u[l], far_lanes.v[k] = w.v[l], far_lanes.target[k] = &rows[l];
   });
   SeedQueue& seeds = seed_queue();
   near.for_each([&](std::size_t l) {
     const std::size_t k = seeds.size++;
-    seeds.u[k] = w.u[l], seeds.v[k] = w.v[l], seeds.point[k] = points[l], seeds.target[k] = &results[l];
+    seeds.u[k] = w.u[l], seeds.v[k] = w.v[l], seeds.point[k] = points[l], seeds.target[k] = &rows[l];
   });
   return true;
 }

@@ -53,7 +53,7 @@ FarLanes far_lanes(const PlanData& plan, double tolerance, std::size_t count, co
 // Where the batch's active lanes are both far and near (far known): the far ones go to the far
 // queue, the near ones to the seed queue; lane l answers in results[l]. Returns whether they left
 // (none stays in the batch).
-bool set_aside_far(FarLanes far, const Point* points, PointResult* results, std::size_t count,
+bool set_aside_far(FarLanes far, const Point* points, LaneRows rows, std::size_t count,
                    const BatchWorkspace& w);
 
 // Puts the seed queue's first m lanes (m <= kBatchLanes) into w's lanes 0..m as active lanes, their

@@ -137,6 +137,20 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
   }
 }
 
+}  // namespace
+
+kernels::NewtonSettings on_curve_newton_settings(bool formula) {
+  constexpr double kFormulaOffCurveDistance = 1e-10;  // refine_grouped says why
+  kernels::NewtonSettings settings = kNewtonSettings;
+  if (formula) {
+    settings.leave_distance = kFormulaOffCurveDistance;
+    settings.final_step = kFormulaNewtonFinalStep;
+  }
+  return settings;
+}
+
+namespace {
+
 // Lane-batched refinement of every lane from t_algebraic (t_refined, distance), in two groups by
 // B's sigma_min estimate (||B z|| / ||B||): the lanes whose seed put them on the curve (at rounding
 // level) by rational_newton, refine.cpp's Newton bit for bit; the others, off the curve (beyond
@@ -162,13 +176,8 @@ bool formed_seed(const PlanData& plan, std::size_t count, double tolerance, Batc
 [[gnu::noinline]] void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
                                       bool formula, BatchWorkspace& w) {
   constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
-  constexpr double kFormulaOffCurveDistance = 1e-10;
   const kernels::RationalCurve curve = kernel_curve(plan);
-  kernels::NewtonSettings settings = kNewtonSettings;
-  if (formula) {
-    settings.leave_distance = kFormulaOffCurveDistance;
-    settings.final_step = kFormulaNewtonFinalStep;
-  }
+  const kernels::NewtonSettings settings = on_curve_newton_settings(formula);
   std::array<std::uint8_t, kBatchLanes> near_of, far_of;
   std::size_t near = 0, far = 0;
   for (std::size_t l = 0; l < count; ++l) {

@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "bezinv/invert.hpp"
+#include "bezinv/kernels/batch.hpp"
 #include "plan_data.hpp"
 #include "pipeline/stage_clock.hpp"
 #include "pipeline/workspace.hpp"
@@ -70,6 +71,11 @@ void fast_path_decide(const PlanData& plan, LaneRows rows, std::size_t count, co
 // w.gap_lane_of[0..waiting), compacted, B formed for them from (w.u, w.v); its z,
 // defect and estimates put back in their lanes.
 void full_kernel(const PlanData& plan, std::size_t waiting, BatchWorkspace& w, int iterations);
+
+// The Newton settings of the refinement's lanes near the curve (rational_newton): kNewtonSettings,
+// and on the formula path a larger last step (kFormulaNewtonFinalStep) and a first distance beyond
+// which a lane is left to nearest_newton (refine_grouped in fast_path.cpp says why).
+kernels::NewtonSettings on_curve_newton_settings(bool formula);
 
 // Whether the full kernel's results for lane l may decide it with its gap (decide_with_gap).
 inline bool gap_decides(const BatchWorkspace& w, std::size_t l) {

@@ -9,7 +9,7 @@
 
 namespace bezinv::detail {
 
-void form_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count, bool form,
+void form_batch(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count, bool form,
                 BatchWorkspace& w) {
   const int n = plan.degree, nn = n * n;
   const std::size_t stride = kBatchLanes;
@@ -19,7 +19,7 @@ void form_batch(const PlanData& plan, const Point* points, PointResult* results,
     w.v[l] = uv[1];
   }
   for (std::size_t l = 0; l < count; ++l) {
-    w.active[l] = admit(plan, points[l], w.u[l], w.v[l], results[l]);
+    w.active[l] = admit(plan, points[l], w.u[l], w.v[l], rows[l]);
     if (!w.active[l]) w.u[l] = w.v[l] = 0.0;
   }
   if (!form) return;
@@ -29,7 +29,7 @@ void form_batch(const PlanData& plan, const Point* points, PointResult* results,
   kernels::active_implementation().bezout_matrix(n, count, stride, plan.B0.data(), plan.Bx.data(), plan.By.data(),
                                                  bilinear_coefficients(plan), w.u.data(), w.v.data(), w.B.data(),
                                                  poison.data());
-  mark_overflowing_b(plan, points, poison.data(), count, w, LaneRows(results));
+  mark_overflowing_b(plan, points, poison.data(), count, w, rows);
   for (std::size_t l = 0; l < count; ++l) {
     if (!w.active[l])
       for (int i = 0; i < nn; ++i) w.B[i * stride + l] = (i % (n + 1) == 0) ? 1.0 : 0.0;

@@ -12,7 +12,7 @@ namespace bezinv::detail {
 // Normalizes and admits the batch's points into w (u, v, active); with `form`, also forms every
 // active lane's B into w.B (lower triangle; an inactive lane gets the identity, so the kernels see
 // only finite, harmless matrices). A lane whose B overflows is answered by answer_far_point.
-void form_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count, bool form,
+void form_batch(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count, bool form,
                 BatchWorkspace& w);
 
 // A lane whose Bezout matrix overflowed (poison[l] not 0: an entry is not finite) is a point too

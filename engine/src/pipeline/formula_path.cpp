@@ -173,7 +173,7 @@ void formula_or_seed(const PlanData& plan, const Point* points, LaneRows rows, s
 }
 
 void formula_unrefined(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
-                       PointResult* results) {
+                       LaneRows rows) {
   const FormulaPathData& f = fast_path_formula(plan);
   const double tolerance = normalized_tolerance(plan, options);
   for (std::size_t l = 0; l < count; ++l) {
@@ -184,7 +184,7 @@ void formula_unrefined(const PlanData& plan, const InvertOptions& options, std::
     const double d = distance(plan, u, v, t);
     if (!(d <= tolerance) || degree_drops(plan, u, v) || !isolated(plan, u, v, t, d, tolerance)) continue;
     w.active[l] = 0;
-    answer_fast(plan, t, d, PointResult::nan, PointResult::nan, results[l], Path::formula);
+    answer_fast(plan, t, d, PointResult::nan, PointResult::nan, rows[l], Path::formula);
   }
 }
 

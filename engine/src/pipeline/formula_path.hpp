@@ -74,6 +74,6 @@ void formula_or_seed(const PlanData& plan, const Point* points, LaneRows rows, s
 // kDistinctParameterGap of it; isolation.hpp), is answered ok with t = N/M itself, path formula.
 // The others go on to the SVD path, whose algebraic t they get as with bezout.
 void formula_unrefined(const PlanData& plan, const InvertOptions& options, std::size_t count, BatchWorkspace& w,
-                       PointResult* results);
+                       LaneRows rows);
 
 }  // namespace bezinv::detail
