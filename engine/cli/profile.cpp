@@ -177,7 +177,7 @@ int run_profile(const ProfileOptions& options) {
     std::printf("%-34s %14.4g %9.1f%%\n", name, rate(seconds), work > 0 ? 100 * seconds / work : 0.0);
   };
   line("form B", stages.form_b);
-  line("kernel (seed, LU, SVD)", stages.kernel);
+  line("kernel (seed, LU, SVD; formula)", stages.kernel);
   line("read-out", stages.read_out);
   line("refine + residual", stages.refine);
   line("off the curve, by distance", stages.off_curve);

@@ -453,6 +453,15 @@ void isolated_by_far_boxes(const PlanData& plan, const double* t, const double* 
   }
 }
 
+kernels::PieceCertificate far_boxes_certificate(const PlanData& plan, double tolerance) {
+  return {.pieces = plan.isolation_pieces,
+          .monotone = plan.isolation_monotone.data(),
+          .monotone_factor = kDistinctParameterGap,
+          .unique = plan.isolation_unique.data(),
+          .far = plan.isolation_far.data(),
+          .limit = isolation_limit(tolerance)};
+}
+
 bool isolated(const PlanData& plan, double u0, double v0, double t, double distance, double tolerance) {
   const int K = plan.isolation_pieces;
   if (plan.isolation_monotone.empty() || !(t >= 0.0 && t <= 1.0)) return false;

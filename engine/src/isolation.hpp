@@ -51,6 +51,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "bezinv/kernels/batch.hpp"
 #include "plan_data.hpp"
 
 namespace bezinv::detail {
@@ -144,6 +145,10 @@ bool isolated(const PlanData& plan, double u0, double v0, double t, double dista
 // must decide (it may still certify, testing the point against each box).
 void isolated_by_far_boxes(const PlanData& plan, const double* t, const double* distance, double tolerance,
                            std::size_t count, std::uint8_t* certified);
+
+// That first test as the formula_newton kernel makes it (the same comparisons, the same bits); the
+// plan must have the certificate (plan.isolation_monotone not empty).
+kernels::PieceCertificate far_boxes_certificate(const PlanData& plan, double tolerance);
 
 // True when P(t), at `distance` from (u0, v0), is the nearest point of the whole segment: the
 // certificate with the point's own distance for the tolerance (every box not next to t's farther

@@ -20,9 +20,10 @@ inline constexpr kernels::NearestNewtonSettings kNearestNewtonSettings{kNewtonMa
 
 // The normalized curve as the kernels take it; with `horner`, with its Horner coefficients too
 // (plan.horner: the kernels' jets then by Horner's rule).
+// One denominator is passed as one array, which the kernels then evaluate once (the same bits).
 inline kernels::RationalCurve kernel_curve(const PlanData& plan, bool horner = false) {
-  kernels::RationalCurve curve{plan.degree, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(),
-                               plan.y_den.data()};
+  const double* y_den = plan.common_denominator && plan.y_den == plan.x_den ? plan.x_den.data() : plan.y_den.data();
+  kernels::RationalCurve curve{plan.degree, plan.x_num.data(), plan.x_den.data(), plan.y_num.data(), y_den};
   if (horner) curve.horner = plan.horner.data();
   return curve;
 }

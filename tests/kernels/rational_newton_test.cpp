@@ -300,6 +300,37 @@ TEST(RationalNewton, ALaneEndsAsAloneWhateverItsGroup) {
   }
 }
 
+// One denominator passed as one array (y_den the very pointer x_den, as the engine passes it): the
+// kernel evaluates it once, with the bits it has from two equal arrays. Points on and off the
+// curve, so that the halving steps' distances are compared too.
+TEST(RationalNewton, OneDenominatorArrayGivesTheBitsOfTwo) {
+  for (const Implementation* implementation : available_implementations()) {
+    std::mt19937_64 rng(67);
+    std::uniform_real_distribution<double> parameter(0.0, 1.0), side(-0.05, 0.05);
+    for (int n = 1; n <= 12; ++n) {
+      const TestCurve c = random_curve(n, rng);  // one denominator, held twice
+      ASSERT_EQ(c.x_den, c.y_den);
+      RationalCurve shared = c.view();
+      shared.y_den = shared.x_den;
+      Lanes two, one;
+      for (int l = 0; l < 37; ++l) {
+        const Exact p = at(c, parameter(rng));
+        const double u = p.x + (l % 3 ? 0.0 : side(rng)), v = p.y + (l % 3 ? 0.0 : side(rng));
+        two.add(u, v, parameter(rng));
+      }
+      one = two;
+      two.run(*implementation, c, Variant::casteljau);
+      implementation->rational_newton(shared, kSettings, one.t.size(), one.u.data(), one.v.data(), one.t.data(),
+                                      one.distance.data());
+      for (std::size_t l = 0; l < two.t.size(); ++l) {
+        EXPECT_TRUE(test_support::same_bits(one.t[l], two.t[l])) << implementation->name << " n=" << n << " lane " << l;
+        EXPECT_TRUE(test_support::same_bits(one.distance[l], two.distance[l]))
+            << implementation->name << " n=" << n << " lane " << l;
+      }
+    }
+  }
+}
+
 // settings.leave_distance: a lane whose distance at its start is beyond it stops there, its t as it
 // came and its distance +inf, counted in the return; every other lane ends with exactly the bits
 // it has without the setting, whatever the batch (130 lanes: two rounds of 64 and a rest). Points

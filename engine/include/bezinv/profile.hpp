@@ -10,7 +10,9 @@ namespace bezinv {
 // Seconds of work spent in each stage of the pipeline, summed over threads.
 struct StageSeconds {
   double form_b = 0;    // normalize the points, form B from the plan's matrices (below degree 8)
-  double kernel = 0;    // null vectors or singular values and vectors of B (from degree 8 forming B too)
+  double kernel = 0;    // null vectors or singular values and vectors of B (from degree 8 forming B too);
+                        // a conic's or cubic's formula path whole (normalizing, N / M, Newton, the
+                        // certificate: one kernel, formula_newton), its rows in decide
   double read_out = 0;  // algebraic t from the null vector
   double refine = 0;    // Newton to full precision, and the residual
   double off_curve = 0; // off-curve points answered by distance alone (nearest point, clearance)

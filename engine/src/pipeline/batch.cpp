@@ -101,11 +101,13 @@ bool invert_lanes(const PlanData& plan, const Point* points, LaneRows rows, std:
   return decide_lanes(plan, rows, count, options, w, clock, !formed_b, stages);
 }
 
-// One batch: formula_first where the plan takes it, then the stages for the lanes it leaves.
+// One batch: formula_first where the plan takes it (and `first`), then the stages for the lanes it
+// leaves.
 bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
-                        const InvertOptions& options, StageSeconds* stages) {
+                        const InvertOptions& options, StageSeconds* stages, bool first = true) {
   StageClock clock(stages);
-  if (!takes_formula_first(plan, options)) return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock);
+  if (!first || !takes_formula_first(plan, options))
+    return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock);
   std::array<std::uint8_t, kBatchLanes> left_of;
   const std::size_t left = formula_first(plan, points, results, count, options, batch_workspace(), clock, left_of);
   if (left == 0) return false;
@@ -171,6 +173,14 @@ void invert_batch(const PlanData& plan, const Point* points, PointResult* result
   with_queues(plan, options, stages, [&] { return invert_batch_lanes(plan, points, results, count, options, stages); });
   if (seed_queue().size >= kBatchLanes || far_queue().size >= kBatchLanes)
     run_sorted_queues(plan, options, stages, kBatchLanes);
+}
+
+void invert_batch_by_stages(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+                            const InvertOptions& options) {
+  with_queues(plan, options, nullptr,
+              [&] { return invert_batch_lanes(plan, points, results, count, options, nullptr, /*first=*/false); });
+  if (seed_queue().size >= kBatchLanes || far_queue().size >= kBatchLanes)
+    run_sorted_queues(plan, options, nullptr, kBatchLanes);
 }
 
 void flush_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages) {

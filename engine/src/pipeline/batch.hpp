@@ -1,5 +1,7 @@
 #pragma once
 // The pipeline's driver: one batch of points of one curve through its stages (docs/README.md):
+//   0. formula    a conic's or cubic's formula path, its common case in one pass: the lanes it
+//                 answers leave here, the others go on gathered (formula_first.hpp)
 //   1. form B     normalize and admit the points, form B (form_b.hpp)
 //   2-4. fast path  null vector by inverse iteration, read-out, refinement, and the answers it
 //                 may give (fast_path.hpp); from degree 15, a batch's lanes far from the segment
@@ -21,6 +23,11 @@ namespace bezinv::detail {
 // waiting in them (flush_queues answers them).
 void invert_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                   const InvertOptions& options, StageSeconds* stages);
+
+// invert_batch without formula_first: every lane through the stages. formula_first must give each
+// lane it answers this very row (tests/engine/formula_first_test.cpp).
+void invert_batch_by_stages(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+                            const InvertOptions& options);
 
 // Answers every lane waiting in this thread's queues: the seed queue and the far queue first, the
 // seed retry next (it may hand lanes to the SVD queue), then the SVD queue. Called at the end of

@@ -102,16 +102,6 @@ bool admit(const PlanData& plan, const Point& point, double u, double v, PointRe
   return true;
 }
 
-void answer_fast(const PlanData& plan, double t, double distance, double sigma_min, double sigma_next,
-                 PointResult& r, Path path) {
-  r.t = t;
-  r.residual = distance * plan.scale;
-  r.status = Status::ok;
-  r.path = path;
-  r.sigma_min = sigma_min;
-  r.sigma_next = sigma_next;
-}
-
 void decide_with_gap(const PlanData& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
                      double tolerance, bool asked, PointResult& result) {
   const int n = plan.degree;

@@ -25,8 +25,16 @@ bool admit(const PlanData& plan, const Point& point, double u, double v, PointRe
 
 // The fast path's answer: status ok, path bezout_lu (or formula: the start was the formula's), the
 // sigma columns from the kernel's estimates (NaN on the formula path).
-void answer_fast(const PlanData& plan, double t, double distance, double sigma_min, double sigma_next,
-                 PointResult& r, Path path = Path::bezout_lu);
+// (Inline: formula_first writes a whole batch of them in one loop.)
+inline void answer_fast(const PlanData& plan, double t, double distance, double sigma_min, double sigma_next,
+                        PointResult& r, Path path = Path::bezout_lu) {
+  r.t = t;
+  r.residual = distance * plan.scale;
+  r.status = Status::ok;
+  r.path = path;
+  r.sigma_min = sigma_min;
+  r.sigma_next = sigma_next;
+}
 
 // The fast path's decision for lane l, refined to c, with the kernel's gap: answered here (ok)
 // where the gap is above kFastPathGapRatio or the isolation certificate settles it, else left

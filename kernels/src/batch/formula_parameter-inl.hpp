@@ -23,7 +23,9 @@
 
 HWY_BEFORE_NAMESPACE();
 namespace bezinv::kernels::HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
+// (Highway's operations are named in each function, hn below, not for the whole namespace: the
+// fused formula_newton kernel includes this file beside the Newton kernel's, whose hn is its wide
+// vectors.)
 
 // N / M for G vectors of lanes at once, (u, v) read from u[g * L ..], v[g * L ..].
 //
@@ -38,6 +40,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 template <int G, class D>
 HWY_INLINE void formula_parameter_groups(D d, const PlaneFormula& f, const double* HWY_RESTRICT u,
                                          const double* HWY_RESTRICT v, double* HWY_RESTRICT t) {
+  namespace hn = hwy::HWY_NAMESPACE;
   using V = hn::Vec<D>;
   const std::size_t L = hn::Lanes(d);
   const int degree = f.degree;
@@ -80,8 +83,10 @@ HWY_INLINE void formula_parameter_groups(D d, const PlaneFormula& f, const doubl
   }
 }
 
-void formula_parameter_batch(const PlaneFormula& formula, std::size_t count, const double* u, const double* v,
-                             double* t) {
+// inline: formula_newton.cpp includes this file too.
+inline void formula_parameter_batch(const PlaneFormula& formula, std::size_t count, const double* u,
+                                    const double* v, double* t) {
+  namespace hn = hwy::HWY_NAMESPACE;
   if (formula.degree < kFormulaParameterMinDegree || formula.degree > kFormulaParameterMaxDegree)
     batch::size_out_of_range("formula_parameter", formula.degree, kFormulaParameterMinDegree,
                              kFormulaParameterMaxDegree);

@@ -55,14 +55,16 @@ struct Table {
       const auto bezout_seed = batch::bezout_null_vector_seed_kernel(kCandidates[i].target);
       const auto space_check = batch::space_check_kernel(kCandidates[i].target);
       const auto formula = batch::formula_parameter_kernel(kCandidates[i].target);
+      const auto formula_newton = batch::formula_newton_kernel(kCandidates[i].target);
       if (svd == nullptr || null == nullptr || null_iterations == nullptr || null_seed == nullptr || newton == nullptr ||
           sample == nullptr || nearest == nullptr || slope == nullptr || parameter == nullptr || bezout == nullptr ||
-          bezout_seed == nullptr || space_check == nullptr || formula == nullptr ||
+          bezout_seed == nullptr || space_check == nullptr || formula == nullptr || formula_newton == nullptr ||
           (supported & kCandidates[i].target) == 0)
         continue;
       storage[count] =
-          Implementation{kCandidates[i].name, svd,   null,      null_iterations, null_seed,  newton, sample,
-                         nearest,             slope, parameter, bezout,          bezout_seed, space_check, formula};
+          Implementation{kCandidates[i].name, svd,   null,      null_iterations, null_seed,   newton,      sample,
+                         nearest,             slope, parameter, bezout,          bezout_seed, space_check, formula,
+                         formula_newton};
       available[count] = &storage[count];
       ++count;
     }

@@ -39,6 +39,10 @@ using SpaceCheckKernel = void (*)(const SpaceCurve& curve, std::size_t count, co
                                   const double* y, const double* z, double* distance);
 using FormulaParameterKernel = void (*)(const PlaneFormula& formula, std::size_t count, const double* u,
                                         const double* v, double* t);
+using FormulaNewtonKernel = std::size_t (*)(const PlaneFormula& formula, const RationalCurve& curve,
+                                            const NewtonSettings& settings, const PointFrame& frame,
+                                            const PieceCertificate& certificate, double tolerance, std::size_t count,
+                                            const double* xy, double* t, double* distance);
 
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);
@@ -54,5 +58,6 @@ BezoutMatrixKernel bezout_matrix_kernel(std::int64_t target);
 BezoutNullVectorSeedKernel bezout_null_vector_seed_kernel(std::int64_t target);
 SpaceCheckKernel space_check_kernel(std::int64_t target);
 FormulaParameterKernel formula_parameter_kernel(std::int64_t target);
+FormulaNewtonKernel formula_newton_kernel(std::int64_t target);
 
 }  // namespace bezinv::kernels::batch

@@ -126,7 +126,10 @@ HWY_INLINE hn::Vec<D> point_distance(D d, const RationalCurve& curve, hn::Vec<D>
   de_casteljau<N, N, 1>(d, curve.x_num, t, a);
   de_casteljau<N, N, 1>(d, curve.x_den, t, b);
   de_casteljau<N, N, 1>(d, curve.y_num, t, c);
-  de_casteljau<N, N, 1>(d, curve.y_den, t, e);
+  if (curve.y_den == curve.x_den)  // one denominator (RationalCurve): the same numbers
+    e[0] = b[0];
+  else
+    de_casteljau<N, N, 1>(d, curve.y_den, t, e);
   return plain_length(hn::Sub(hn::Div(a[0], b[0]), u), hn::Sub(hn::Div(c[0], e[0]), v), plain);
 }
 
@@ -145,11 +148,15 @@ struct CasteljauCurve {
     de_casteljau<N, kSteps, kLeft>(d, curve.x_num, t, a);
     de_casteljau<N, kSteps, kLeft>(d, curve.x_den, t, b);
     de_casteljau<N, kSteps, kLeft>(d, curve.y_num, t, c);
-    de_casteljau<N, kSteps, kLeft>(d, curve.y_den, t, e);
     const Jet1<N, V> xn(t, a[0], a[1], a[2]), xd(t, b[0], b[1], b[2]);
-    const Jet1<N, V> yn(t, c[0], c[1], c[2]), yd(t, e[0], e[1], e[2]);
+    const Jet1<N, V> yn(t, c[0], c[1], c[2]);
     quotient_jet(xn, xd, x, dx, ddx);
-    quotient_jet(yn, yd, y, dy, ddy);
+    if (curve.y_den == curve.x_den) {  // one denominator (RationalCurve): its jet once, the same numbers
+      quotient_jet(yn, xd, y, dy, ddy);
+      return;
+    }
+    de_casteljau<N, kSteps, kLeft>(d, curve.y_den, t, e);
+    quotient_jet(yn, Jet1<N, V>(t, e[0], e[1], e[2]), y, dy, ddy);
   }
 
   template <class D, class V = hn::Vec<D>>
@@ -231,6 +238,67 @@ struct HornerCurve {
   }
 };
 
+// The first half of one of rational_newton_group's iterations, at t: the jet, E = P(t) - P0 and
+// its length h (plain: as the engine's length() computes it), f = E . P' (g1), |P'|^2 (speed2),
+// f' = |P'|^2 + E . P'' (slope; g2 = |P'|^2 where that is not positive: Gauss-Newton where the
+// distance is concave), and Newton's step -f / g2 capped at max_step. `steps`: where g2 > 0 and f
+// is finite (elsewhere the iteration stops, with the distance h).
+template <class D>
+struct NewtonJet {
+  using V = hn::Vec<D>;
+  V ex, ey, dx, dy, ddx, ddy, h, g1, speed2, slope, step;
+  hn::Mask<D> plain, steps;
+  template <class Curve>
+  HWY_INLINE NewtonJet(D d, const Curve& curve, const V& u, const V& v, const V& t, const V& max_step) {
+    V x, y;
+    curve.jet(d, t, x, dx, ddx, y, dy, ddy);
+    ex = hn::Sub(x, u);
+    ey = hn::Sub(y, v);
+    h = plain_length(ex, ey, plain);
+    const V zero = hn::Zero(d);
+    g1 = hn::Add(hn::Mul(ex, dx), hn::Mul(ey, dy));
+    speed2 = hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy));
+    slope = hn::Add(hn::Add(speed2, hn::Mul(ex, ddx)), hn::Mul(ey, ddy));
+    const V g2 = hn::IfThenElse(hn::Gt(slope, zero), slope, speed2);
+    steps = hn::And(hn::Gt(g2, zero), hn::IsFinite(g1));
+    step = hn::Min(hn::Max(hn::Div(hn::Neg(g1), g2), hn::Neg(max_step)), max_step);
+  }
+};
+
+// A small step of the jet's (|step| <= trusted_step, the lanes `small`), taken as Newton gives it:
+// next = t + step clamped to [0, 1]. `last`: the last step (at most final_step, not cut short by
+// the clamp, f' >= |P'|^2 / 2, and s^2 |P''| below the rounding: refine.cpp), its distance by the
+// first-order update |E + P' s| (`updated`; last_plain: as the engine's length() computes it, else
+// the scalar code would take it with hypot). `converged`, of the others: t moved by at most
+// 4 eps max(1, |t|), where the distance is the one before the step (refine.cpp says why) unless
+// `fast`: those ulps of t move P by more than a few ulps (|P'| moved > 4 eps), measured at the new
+// t then.
+template <class D>
+struct SmallStep {
+  using V = hn::Vec<D>;
+  V next, updated;
+  hn::Mask<D> last, last_plain, converged, fast;
+  HWY_INLINE SmallStep(D d, const NewtonJet<D>& jet, const V& t, const hn::Mask<D>& small, const V& final_step) {
+    const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+    const V unclamped = hn::Add(t, jet.step);
+    next = hn::Min(hn::Max(unclamped, zero), one);
+    const V moved = hn::Abs(hn::Sub(next, t));
+    const V s = hn::Sub(next, t);
+    const hn::Mask<D> flat =
+        hn::Le(hn::Mul(hn::Mul(s, s), hn::Add(hn::Abs(jet.ddx), hn::Abs(jet.ddy))),
+               hn::Set(d, std::numeric_limits<double>::epsilon()));
+    last = hn::And(flat, hn::And(small, hn::And(hn::And(hn::Le(moved, final_step), hn::Eq(next, unclamped)),
+                                                 hn::Ge(jet.slope, hn::Mul(hn::Set(d, 0.5), jet.speed2)))));
+    updated = plain_length(hn::Add(jet.ex, hn::Mul(jet.dx, s)), hn::Add(jet.ey, hn::Mul(jet.dy, s)), last_plain);
+    const V new_t = hn::IfThenElse(small, next, t);
+    converged = hn::And(hn::AndNot(last, small),
+                        hn::Le(moved, hn::Mul(hn::Set(d, 4 * std::numeric_limits<double>::epsilon()),
+                                              hn::Max(one, hn::Abs(new_t)))));
+    constexpr double kEps = std::numeric_limits<double>::epsilon();
+    fast = hn::Gt(hn::Mul(hn::Mul(moved, moved), jet.speed2), hn::Set(d, 16 * kEps * kEps));
+  }
+};
+
 // rational_newton_groups' first round, in iterations.
 inline constexpr int kNewtonFirstRound = 2;
 
@@ -268,8 +336,6 @@ HWY_NOINLINE bool rational_newton_group(D d, const Curve& curve, const NewtonSet
   const V trusted = hn::Set(d, settings.trusted_step), max_step = hn::Set(d, settings.max_step);
   const V final_step = hn::Set(d, settings.final_step);
   const V four_eps = hn::Set(d, 4 * std::numeric_limits<double>::epsilon());
-  const V eps = hn::Set(d, std::numeric_limits<double>::epsilon());
-  const V sixteen_eps2 = hn::Set(d, 16 * std::numeric_limits<double>::epsilon() * std::numeric_limits<double>::epsilon());
   auto converged = [&](V moved, V t) { return hn::Le(moved, hn::Mul(four_eps, hn::Max(one, hn::Abs(t)))); };
 
   M active = hn::And(hn::Ge(t0, zero), hn::Le(t0, one));  // false for NaN; in [0,1] clamp(t0) = t0
@@ -302,51 +368,29 @@ HWY_NOINLINE bool rational_newton_group(D d, const Curve& curve, const NewtonSet
         break;
       }
     }
-    V x, dx, ddx, y, dy, ddy;
-    curve.jet(d, t, x, dx, ddx, y, dy, ddy);
-    const V ex = hn::Sub(x, u), ey = hn::Sub(y, v);
-    M plain;
-    const V h = plain_length(ex, ey, plain);
-    give_back(hn::And(active, hn::Not(hn::And(plain, hn::IsFinite(h)))));  // the scalar code stops on inf/NaN
+    const NewtonJet<D> jet(d, curve, u, v, t, max_step);
+    give_back(hn::And(active, hn::Not(hn::And(jet.plain, hn::IsFinite(jet.h)))));  // the scalar code stops on inf/NaN
     if (kLeaving && iteration == 0) {  // off the curve from the start, by the caller's measure: left to it
-      const M left = hn::And(active, hn::Gt(h, hn::Set(d, settings.leave_distance)));
+      const M left = hn::And(active, hn::Gt(jet.h, hn::Set(d, settings.leave_distance)));
       result = hn::IfThenElse(left, hn::Set(d, std::numeric_limits<double>::infinity()), result);
       active = hn::AndNot(left, active);
       *left_lanes += hn::CountTrue(d, left);
     }
-    dist = hn::IfThenElse(active, h, dist);
+    dist = hn::IfThenElse(active, jet.h, dist);
     current = hn::Or(current, active);
-
-    const V g1 = hn::Add(hn::Mul(ex, dx), hn::Mul(ey, dy));
-    const V speed2 = hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy));
-    const V slope = hn::Add(hn::Add(speed2, hn::Mul(ex, ddx)), hn::Mul(ey, ddy));
-    const V g2 = hn::IfThenElse(hn::Gt(slope, zero), slope, speed2);  // Gauss-Newton where the distance is concave
-    finish(hn::And(active, hn::Not(hn::And(hn::Gt(g2, zero), hn::IsFinite(g1)))), dist);
-    V step = hn::Min(hn::Max(hn::Div(hn::Neg(g1), g2), hn::Neg(max_step)), max_step);
+    finish(hn::AndNot(jet.steps, active), dist);
+    V step = jet.step;
     last_step = step;
 
     // Small steps: taken as Newton gives them.
     const M small = hn::And(active, hn::Le(hn::Abs(step), trusted));
     {
-      const V unclamped = hn::Add(t, step);
-      const V next = hn::Min(hn::Max(unclamped, zero), one);
-      const V moved = hn::Abs(hn::Sub(next, t));
-      // The last step (settings.final_step), not cut short by the clamp: the distance at the new
-      // t by the first-order update; given back where the scalar code would take it with hypot.
-      // Not where s^2 |P''| exceeds the rounding (refine.cpp): measured at the new t instead.
-      const V s = hn::Sub(next, t);
-      const M flat = hn::Le(hn::Mul(hn::Mul(s, s), hn::Add(hn::Abs(ddx), hn::Abs(ddy))), eps);
-      const M last = hn::And(flat, hn::And(small, hn::And(hn::And(hn::Le(moved, final_step), hn::Eq(next, unclamped)),
-                                                          hn::Ge(slope, hn::Mul(half, speed2)))));
-      M last_plain;
-      const V updated = plain_length(hn::Add(ex, hn::Mul(dx, s)), hn::Add(ey, hn::Mul(dy, s)), last_plain);
-      t = hn::IfThenElse(small, next, t);
-      give_back(hn::AndNot(last_plain, last));
-      finish(hn::And(last, last_plain), updated);
-      // Converged: the distance at the t before this step (refine.cpp says why), or measured at
-      // the new t where those ulps of t move P by more than a few ulps (|P'| moved > 4 eps).
-      const M done = hn::And(hn::AndNot(last, small), converged(moved, t));
-      const M fast = hn::Gt(hn::Mul(hn::Mul(moved, moved), speed2), sixteen_eps2);
+      const SmallStep<D> taken(d, jet, t, small, final_step);
+      t = hn::IfThenElse(small, taken.next, t);
+      give_back(hn::AndNot(taken.last_plain, taken.last));
+      finish(hn::And(taken.last, taken.last_plain), taken.updated);
+      const M done = taken.converged;
+      const M fast = taken.fast;
       finish(hn::AndNot(fast, done), dist);
       final_distance = hn::Or(final_distance, hn::And(done, fast));
       active = hn::AndNot(hn::And(done, fast), active);
@@ -452,7 +496,8 @@ std::size_t rational_newton_groups(const Curve& curve, const NewtonSettings& set
   return left;
 }
 
-std::size_t rational_newton_batch(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
+// (inline, as rational_slope_batch: formula_newton.cpp includes this file too.)
+inline std::size_t rational_newton_batch(const RationalCurve& curve, const NewtonSettings& settings, std::size_t count,
                                   const double* u, const double* v, double* t, double* distance) {
   for (std::size_t l = 0; l < count; ++l) distance[l] = std::numeric_limits<double>::quiet_NaN();
   const bool leaving = settings.leave_distance < std::numeric_limits<double>::infinity();
@@ -469,7 +514,7 @@ std::size_t rational_newton_batch(const RationalCurve& curve, const NewtonSettin
 }
 
 // P and P' by Horner's rule (HornerCurve::slope), lane by lane as the engine's curve_slope_horner.
-void rational_slope_batch(const RationalCurve& curve, std::size_t count, const double* t, double* x, double* y,
+inline void rational_slope_batch(const RationalCurve& curve, std::size_t count, const double* t, double* x, double* y,
                           double* dx, double* dy) {
   check_size<kRationalNewtonMinDegree, kRationalNewtonMaxDegree>("rational_slope", curve.degree);
   using D = wide::Tag<kNewtonWideVectors<2>>;

@@ -45,13 +45,16 @@ inline constexpr int kSpaceCheckMinDegree = 1;            // space_check: the cu
 inline constexpr int kSpaceCheckMaxDegree = kMaxBatchSize;
 inline constexpr int kFormulaParameterMinDegree = 1;      // formula_parameter: the formula's degree
 inline constexpr int kFormulaParameterMaxDegree = kMaxBatchSize;
+inline constexpr int kFormulaNewtonMinDegree = 2;         // formula_newton: the curve's degree (a conic's
+inline constexpr int kFormulaNewtonMaxDegree = 3;         // or a cubic's few operations)
 
 // null_vector's solves from (1, ..., 1); null_vector_iterations takes at least as many.
 inline constexpr int kNullVectorIterations = 3;
 
 // The plane curve of rational_newton, (x_num / x_den, y_num / y_den): four polynomials in the
 // Bernstein basis of degree `degree` (kRationalNewtonMinDegree..kRationalNewtonMaxDegree),
-// degree + 1 coefficients each.
+// degree + 1 coefficients each. With one denominator, y_den may be the very array x_den (the same
+// pointer): the de Casteljau kernels then evaluate it once, with the same bits.
 //
 // `horner`, for the kernels that evaluate by Horner's rule (rational_slope, nearest_newton: O(n) a
 // jet where de Casteljau is O(n^2); rational_newton ignores it), is the layout of the engine's
@@ -119,6 +122,26 @@ struct PlaneFormula {
   double max_coordinate, min_denominator;
   const double* n;
   const double* m;
+};
+
+// How formula_newton normalizes a point (x, y) (the engine's PlanData::normalize): with `scale` a
+// power of two and the centre given times it, (dx, dy) = (x scale - centre_x, y scale - centre_y),
+// then the rotation (u, v) = (cos dx - sin dy, sin dx + cos dy), in that order.
+struct PointFrame {
+  double scale, centre_x, centre_y, cos, sin;
+};
+
+// The isolation certificate's first test as formula_newton makes it (the engine's
+// isolated_by_far_boxes): [0, 1] cut into `pieces` equal pieces, t in piece
+// j = min(pieces - 1, int(t pieces)); a lane at t and distance d passes where
+// (d < monotone[j] * monotone_factor or d < unique[j]) and far[j] - d > limit.
+struct PieceCertificate {
+  int pieces;
+  const double* monotone;
+  double monotone_factor;
+  const double* unique;
+  const double* far;
+  double limit;
 };
 
 // One instruction set's kernels. All function pointers are non-null.
@@ -282,6 +305,20 @@ struct Implementation {
   // a point where the Bezout seed is O(n^3): the formula path's algebraic step for a whole batch.
   void (*formula_parameter)(const PlaneFormula& formula, std::size_t count, const double* u, const double* v,
                             double* t);
+
+  // The formula path's common case for a conic or a cubic, in one pass (a point on the curve away
+  // from the formula's base points and from other branches): per point (xy[2l], xy[2l + 1]),
+  // l < count, normalized by `frame`, t = N / M of `formula` (as formula_parameter), then
+  // rational_newton's first iteration from that t with `settings` (settings.leave_distance
+  // included). Where that iteration settles the lane (its last step, or a step that converged where
+  // t's last ulps do not move P), at a distance of at most `tolerance` that `certificate` passes:
+  // t[l] and distance[l] as formula_parameter then rational_newton give them, bit for bit. Every
+  // other lane gets distance[l] = NaN (t[l] meaningless): the caller takes it the long way.
+  // Returns the number of lanes settled. curve.degree in [kFormulaNewtonMinDegree,
+  // kFormulaNewtonMaxDegree], formula.degree in formula_parameter's range.
+  std::size_t (*formula_newton)(const PlaneFormula& formula, const RationalCurve& curve, const NewtonSettings& settings,
+                                const PointFrame& frame, const PieceCertificate& certificate, double tolerance,
+                                std::size_t count, const double* xy, double* t, double* distance);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the

@@ -1,0 +1,131 @@
+// The formula path's common case for a conic or a cubic in one kernel (bezinv/kernels/batch.hpp,
+// Implementation::formula_newton): per point, the engine's normalization, the inversion formula's
+// t = N / M, the first iteration of the Newton refinement from it, and the isolation
+// certificate's first test. Re-included once per instruction set by hwy/foreach_target.h (see
+// formula_newton.cpp).
+//
+// Why fused: for a point on a conic or a cubic each of those steps is a few dozen operations, and
+// run as separate kernels and engine loops over a batch, the loads, stores and loop overheads
+// between them cost as much as the arithmetic. A point on the curve, given t by the formula, is
+// settled by the first Newton iteration (its last step): this kernel runs that iteration alone,
+// with rational_newton's own code (NewtonJet, SmallStep), and leaves every lane it would take
+// further, so each lane it settles has the three kernels' bits. Compiled with -ffp-contract=off,
+// as they are.
+#if defined(BEZINV_KERNELS_BATCH_FORMULA_NEWTON_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef BEZINV_KERNELS_BATCH_FORMULA_NEWTON_INL_H_
+#undef BEZINV_KERNELS_BATCH_FORMULA_NEWTON_INL_H_
+#else
+#define BEZINV_KERNELS_BATCH_FORMULA_NEWTON_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <limits>
+
+#include "batch/formula_parameter-inl.hpp"
+#include "batch/rational_newton-inl.hpp"
+#include "batch/sizes-inl.hpp"
+#include "bezinv/kernels/batch.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace bezinv::kernels::HWY_NAMESPACE {
+
+// One group of LW = MaxLanes(D) points, xy[2 first ..] (`lanes` of them; the others padded with
+// NaN points, which no step settles).
+template <int N, class D>
+HWY_INLINE std::size_t formula_newton_group(D d, const PlaneFormula& formula, const RationalCurve& curve,
+                                            const NewtonSettings& settings, const PointFrame& frame,
+                                            const PieceCertificate& certificate, double tolerance,
+                                            std::size_t first, std::size_t lanes, const double* HWY_RESTRICT xy,
+                                            double* HWY_RESTRICT t_out, double* HWY_RESTRICT distance_out) {
+  namespace hw = hwy::HWY_NAMESPACE;
+  using DN = typename D::D;
+  using V = hn::Vec<D>;
+  using M = hn::Mask<D>;
+  constexpr std::size_t LW = hn::MaxLanes(D()), L = hw::MaxLanes(DN());
+  const DN dn;
+  HWY_ALIGN double u[LW], v[LW], t0[LW];
+  {
+    HWY_ALIGN double padded[2 * LW];
+    const double* points = xy + 2 * first;
+    if (lanes < LW) {
+      std::fill_n(padded, 2 * LW, std::numeric_limits<double>::quiet_NaN());
+      std::copy_n(points, 2 * lanes, padded);
+      points = padded;
+    }
+    // PlanData::normalize: scaled before the difference, then rotated.
+    const auto scale = hw::Set(dn, frame.scale), cx = hw::Set(dn, frame.centre_x), cy = hw::Set(dn, frame.centre_y);
+    const auto c = hw::Set(dn, frame.cos), s = hw::Set(dn, frame.sin);
+    for (int g = 0; g < D::kVectors; ++g) {
+      hw::Vec<DN> x, y;
+      hw::LoadInterleaved2(dn, points + 2 * g * L, x, y);
+      const auto dx = hw::Sub(hw::Mul(x, scale), cx), dy = hw::Sub(hw::Mul(y, scale), cy);
+      hw::Store(hw::Sub(hw::Mul(c, dx), hw::Mul(s, dy)), dn, u + g * L);
+      hw::Store(hw::Add(hw::Mul(s, dx), hw::Mul(c, dy)), dn, v + g * L);
+    }
+  }
+  formula_parameter_groups<D::kVectors>(dn, formula, u, v, t0);
+
+  // rational_newton_group's first iteration, for the lanes it settles there (its last step, or a
+  // step that converged where t's last ulps do not move P), kLeaving included: a lane whose first
+  // distance exceeds settings.leave_distance is not settled.
+  const V uw = hn::Load(d, u), vw = hn::Load(d, v), t = hn::Load(d, t0);
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  const M inside = hn::And(hn::Ge(t, zero), hn::Le(t, one));  // false for NaN
+  const V start = hn::IfThenElse(inside, t, zero);
+  const NewtonJet<D> jet(d, CasteljauCurve<N>{curve}, uw, vw, start, hn::Set(d, settings.max_step));
+  const M going = hn::And(hn::And(inside, hn::And(jet.plain, hn::IsFinite(jet.h))),
+                          hn::And(hn::Le(jet.h, hn::Set(d, settings.leave_distance)), jet.steps));
+  const M small = hn::And(going, hn::Le(hn::Abs(jet.step), hn::Set(d, settings.trusted_step)));
+  const SmallStep<D> taken(d, jet, start, small, hn::Set(d, settings.final_step));
+  const M last = hn::And(taken.last, taken.last_plain);
+  const M converged = hn::AndNot(taken.fast, taken.converged);
+  const V distance = hn::IfThenElse(last, taken.updated, jet.h);
+  M settled = hn::And(hn::Or(last, converged), hn::Le(distance, hn::Set(d, tolerance)));
+
+  // The isolation certificate's first test (the engine's isolated_by_far_boxes), by gathers.
+  HWY_ALIGN double next[LW], dist[LW];
+  hn::Store(taken.next, d, next);
+  hn::Store(distance, d, dist);
+  const hw::RebindToSigned<DN> di;
+  const auto last_piece = hw::Set(di, certificate.pieces - 1);
+  const auto pieces = hw::Set(dn, static_cast<double>(certificate.pieces));
+  const auto factor = hw::Set(dn, certificate.monotone_factor), limit = hw::Set(dn, certificate.limit);
+  std::size_t count = 0;
+  for (int g = 0; g < D::kVectors; ++g) {
+    const auto tg = hw::Load(dn, next + g * L), dg = hw::Load(dn, dist + g * L);
+    const auto j = hw::Min(hw::ConvertTo(di, hw::Mul(tg, pieces)), last_piece);
+    const auto around = hw::Or(hw::Lt(dg, hw::Mul(hw::GatherIndex(dn, certificate.monotone, j), factor)),
+                               hw::Lt(dg, hw::GatherIndex(dn, certificate.unique, j)));
+    const auto far = hw::Gt(hw::Sub(hw::GatherIndex(dn, certificate.far, j), dg), limit);
+    settled.m[g] = hw::And(settled.m[g], hw::And(around, far));
+    count += hw::CountTrue(dn, settled.m[g]);
+  }
+  hn::StoreGroup(taken.next, d, t_out, first, lanes);
+  hn::StoreGroup(hn::IfThenElse(settled, distance, hn::Set(d, std::numeric_limits<double>::quiet_NaN())), d,
+                 distance_out, first, lanes);
+  return count;
+}
+
+std::size_t formula_newton_batch(const PlaneFormula& formula, const RationalCurve& curve,
+                                 const NewtonSettings& settings, const PointFrame& frame,
+                                 const PieceCertificate& certificate, double tolerance, std::size_t count,
+                                 const double* xy, double* t, double* distance) {
+  check_size<kFormulaParameterMinDegree, kFormulaParameterMaxDegree>("formula_newton's formula", formula.degree);
+  std::size_t settled = 0;
+  dispatch_size<kFormulaNewtonMinDegree, kFormulaNewtonMaxDegree>("formula_newton", curve.degree, [&](auto size) {
+    constexpr int N = decltype(size)::value;
+    wide::ForEachGroup<kNewtonWideVectors<N>>(count, [&](auto group, std::size_t first, std::size_t lanes) {
+      settled += formula_newton_group<N>(group, formula, curve, settings, frame, certificate, tolerance, first, lanes,
+                                         xy, t, distance);
+    });
+  });
+  return settled;
+}
+
+}  // namespace bezinv::kernels::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // BEZINV_KERNELS_BATCH_FORMULA_NEWTON_INL_H_
