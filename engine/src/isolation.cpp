@@ -231,6 +231,22 @@ int isolation_piece_count(int degree) {
   return kIsolationMaxPieces;
 }
 
+// plan.isolation_far_floor and isolation_around_floor (plan_data.hpp): the least of each piece's
+// bound, -inf where one is NaN (a NaN bound refuses every lane of its piece; the floors must not
+// pass them).
+void isolation_floors(PlanData& plan) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double far = inf, monotone = inf, unique = inf;
+  for (int j = 0; j < plan.isolation_pieces; ++j) {
+    far = std::isnan(plan.isolation_far[j]) ? -inf : std::min(far, plan.isolation_far[j]);
+    const double m = plan.isolation_monotone[j] * kDistinctParameterGap;
+    monotone = std::isnan(m) ? -inf : std::min(monotone, m);
+    unique = std::isnan(plan.isolation_unique[j]) ? -inf : std::min(unique, plan.isolation_unique[j]);
+  }
+  plan.isolation_far_floor = far;
+  plan.isolation_around_floor = std::max(monotone, unique);
+}
+
 void isolation_pieces(PlanData& plan) {
   plan.isolation_pieces = 0;
   plan.isolation_boxes.clear();
@@ -341,6 +357,7 @@ void isolation_pieces(PlanData& plan) {
     plan.isolation_far[j] = std::sqrt(nearest2);
     plan.isolation_far_wide[j] = std::sqrt(wide2);
   }
+  isolation_floors(plan);
   segment_far_grid(plan);
 }
 
@@ -459,7 +476,9 @@ kernels::PieceCertificate far_boxes_certificate(const PlanData& plan, double tol
           .monotone_factor = kDistinctParameterGap,
           .unique = plan.isolation_unique.data(),
           .far = plan.isolation_far.data(),
-          .limit = isolation_limit(tolerance)};
+          .limit = isolation_limit(tolerance),
+          .around_floor = plan.isolation_around_floor,
+          .far_floor = plan.isolation_far_floor};
 }
 
 bool isolated(const PlanData& plan, double u0, double v0, double t, double distance, double tolerance) {

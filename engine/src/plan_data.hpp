@@ -248,6 +248,12 @@ struct PlanData {
   int isolation_pieces = 0;
   std::vector<double> isolation_boxes, isolation_far, isolation_monotone, isolation_unique, isolation_groups,
       isolation_far_wide;
+  // Floors of the first test's bounds over every piece: isolation_far[j] >= isolation_far_floor, and
+  // isolation_monotone[j] * kDistinctParameterGap >= isolation_around_floor for every j or
+  // isolation_unique[j] >= it for every j (-inf where a bound is NaN). A distance below both passes
+  // the test in any piece (kernels::PieceCertificate).
+  double isolation_far_floor = -std::numeric_limits<double>::infinity();
+  double isolation_around_floor = -std::numeric_limits<double>::infinity();
   // Cells far from the segment (isolation.hpp, segment_far): over the pieces' boxes, a
   // kSegmentFarGrid x kSegmentFarGrid grid of bits, set for a cell that comes within
   // segment_far_reach of some piece's capsule or box (cell (i, j) from

@@ -5,25 +5,26 @@
 // it, near and past the ends, near the curve's other branches, far away, and not finite; on
 // conics and cubics (the fused kernel, formula_newton), graphs of functions, and, asked for, the
 // curve's own formula from degree 4 (the kernels one after the other).
+#include "pipeline/formula_first.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cmath>
 #include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "bezinv/curve.hpp"
 #include "bezinv/datasets/on_curve_points.hpp"
 #include "bezinv/datasets/random_curve.hpp"
 #include "bezinv/invert.hpp"
-#include "bezinv/curve.hpp"
 #include "bezinv/plan.hpp"
 #include "pipeline/batch.hpp"
-#include "pipeline/formula_first.hpp"
 #include "pipeline/formula_path.hpp"
 #include "pipeline/stage_clock.hpp"
 #include "pipeline/workspace.hpp"
@@ -128,8 +129,8 @@ void check_curve(const Curve& curve, const InvertOptions& options, std::mt19937_
     detail::flush_queues(data, options, nullptr);
   }
   for (std::size_t i = 0; i < points.size(); ++i) {
-    ASSERT_TRUE(test_support::same_row(first[i], staged[i])) << what << " point " << i << " (" << shuffled[i].x
-                                                             << ", " << shuffled[i].y << ")";
+    ASSERT_TRUE(test_support::same_row(first[i], staged[i]))
+        << what << " point " << i << " (" << shuffled[i].x << ", " << shuffled[i].y << ")";
     if (!std::isnan(shuffled_known[i]) && first[i].status == Status::ok) {
       EXPECT_NEAR(first[i].t, shuffled_known[i], 1e-9) << what << " point " << i;
     }
@@ -143,7 +144,8 @@ TEST(FormulaFirst, EveryRowItWritesIsTheStagesRow) {
   std::mt19937_64 rng(20261206);
   for (int n : {2, 3})
     for (CurveKind kind : {CurveKind::bezier, CurveKind::rational_bezier})
-      for (datasets::ControlPolygon polygon : {datasets::ControlPolygon::perturbed_arc, datasets::ControlPolygon::unit_square})
+      for (datasets::ControlPolygon polygon :
+           {datasets::ControlPolygon::perturbed_arc, datasets::ControlPolygon::unit_square})
         for (int c = 0; c < curves; ++c) {
           const Curve curve = datasets::random_curve(kind, n, rng, polygon);
           const InversionPlan plan = make_plan(curve);

@@ -85,22 +85,26 @@ HWY_INLINE std::size_t formula_newton_group(D d, const PlaneFormula& formula, co
   const V distance = hn::IfThenElse(last, taken.updated, jet.h);
   M settled = hn::And(hn::Or(last, converged), hn::Le(distance, hn::Set(d, tolerance)));
 
-  // The isolation certificate's first test (the engine's isolated_by_far_boxes), by gathers.
-  HWY_ALIGN double next[LW], dist[LW];
-  hn::Store(taken.next, d, next);
-  hn::Store(distance, d, dist);
+  // The isolation certificate's first test (the engine's isolated_by_far_boxes): by its floors,
+  // and for the lanes they do not pass, by the bounds of their piece (gathers; a lane not settled
+  // looks up piece 0, so that every index is in range).
   const hw::RebindToSigned<DN> di;
   const auto last_piece = hw::Set(di, certificate.pieces - 1);
   const auto pieces = hw::Set(dn, static_cast<double>(certificate.pieces));
   const auto factor = hw::Set(dn, certificate.monotone_factor), limit = hw::Set(dn, certificate.limit);
+  const auto around_floor = hw::Set(dn, certificate.around_floor), far_floor = hw::Set(dn, certificate.far_floor);
   std::size_t count = 0;
   for (int g = 0; g < D::kVectors; ++g) {
-    const auto tg = hw::Load(dn, next + g * L), dg = hw::Load(dn, dist + g * L);
-    const auto j = hw::Min(hw::ConvertTo(di, hw::Mul(tg, pieces)), last_piece);
-    const auto around = hw::Or(hw::Lt(dg, hw::Mul(hw::GatherIndex(dn, certificate.monotone, j), factor)),
-                               hw::Lt(dg, hw::GatherIndex(dn, certificate.unique, j)));
-    const auto far = hw::Gt(hw::Sub(hw::GatherIndex(dn, certificate.far, j), dg), limit);
-    settled.m[g] = hw::And(settled.m[g], hw::And(around, far));
+    const auto dg = distance.v[g];
+    const auto floors = hw::And(hw::Lt(dg, around_floor), hw::Gt(hw::Sub(far_floor, dg), limit));
+    if (!hw::AllFalse(dn, hw::AndNot(floors, settled.m[g]))) {
+      const auto tg = hw::IfThenElseZero(settled.m[g], taken.next.v[g]);
+      const auto j = hw::Min(hw::ConvertTo(di, hw::Mul(tg, pieces)), last_piece);
+      const auto around = hw::Or(hw::Lt(dg, hw::Mul(hw::GatherIndex(dn, certificate.monotone, j), factor)),
+                                 hw::Lt(dg, hw::GatherIndex(dn, certificate.unique, j)));
+      const auto far = hw::Gt(hw::Sub(hw::GatherIndex(dn, certificate.far, j), dg), limit);
+      settled.m[g] = hw::And(settled.m[g], hw::Or(floors, hw::And(around, far)));
+    }
     count += hw::CountTrue(dn, settled.m[g]);
   }
   hn::StoreGroup(taken.next, d, t_out, first, lanes);

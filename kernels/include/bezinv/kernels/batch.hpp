@@ -135,6 +135,10 @@ struct PointFrame {
 // isolated_by_far_boxes): [0, 1] cut into `pieces` equal pieces, t in piece
 // j = min(pieces - 1, int(t pieces)); a lane at t and distance d passes where
 // (d < monotone[j] * monotone_factor or d < unique[j]) and far[j] - d > limit.
+// With floors under those bounds (far[j] >= far_floor for every j, and monotone[j] * monotone_factor
+// >= around_floor for every j or unique[j] >= around_floor for every j; -inf where unknown), a lane
+// with d < around_floor and far_floor - d > limit passes in any piece (a rounded difference is
+// monotone in its first operand): most lanes on a curve, without looking up their piece.
 struct PieceCertificate {
   int pieces;
   const double* monotone;
@@ -142,6 +146,8 @@ struct PieceCertificate {
   const double* unique;
   const double* far;
   double limit;
+  double around_floor = -std::numeric_limits<double>::infinity();
+  double far_floor = -std::numeric_limits<double>::infinity();
 };
 
 // One instruction set's kernels. All function pointers are non-null.
