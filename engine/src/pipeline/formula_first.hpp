@@ -4,12 +4,13 @@
 // loop over the batch and keep lane state for every case they handle; for a conic or a cubic,
 // whose N / M costs a few operations, those loops and the row written twice (cleared by admit,
 // then answered) cost more than the inversion itself. Here each lane is normalized, given
-// t = N / M (the formula_parameter kernel), refined (the rational_newton kernel, the settings of
-// fast_path_decide's on-curve lanes) and certified by the isolation certificate's first test
-// (isolated_by_far_boxes), and its row written once. Those are the very operations the stages make
-// for such a lane, so its row has the same bits as theirs. Every other lane (a non-finite point,
-// a base point near, off the curve, not certified) goes through the stages as before, gathered
-// into a batch of its own; a lane's answer depends on its point alone, not on its batch.
+// t = N / M, refined (rational_newton's iterations, with the settings of fast_path_decide's
+// on-curve lanes) and certified by the isolation certificate's first test (isolated_by_far_boxes)
+// (for a conic or a cubic all in one kernel, formula_newton, which settles the lanes the first
+// Newton iteration settles), and its row written once. Those are the very operations the stages
+// make for such a lane, so its row has the same bits as theirs. Every other lane (a non-finite
+// point, a base point near, off the curve, not certified) goes through the stages as before,
+// gathered into a batch of its own; a lane's answer depends on its point alone, not on its batch.
 #include <array>
 #include <cstddef>
 #include <cstdint>
