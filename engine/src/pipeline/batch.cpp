@@ -123,9 +123,13 @@ FormulaFirstSkip& formula_first_skip() {
 bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                         const InvertOptions& options, StageSeconds* stages, bool first = true) {
   StageClock clock(stages);
-  FormulaFirstSkip& skip = formula_first_skip();
-  if (!first || !takes_formula_first(plan, options) || (skip.skip > 0 && skip.skip-- > 0))
+  if (!first || !takes_formula_first(plan, options))
     return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock);
+  FormulaFirstSkip& skip = formula_first_skip();
+  if (skip.skip > 0) {
+    --skip.skip;
+    return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock);
+  }
   std::array<std::uint8_t, kBatchLanes> left_of;
   const std::size_t left = formula_first(plan, points, results, count, options, batch_workspace(), clock, left_of);
   if (8 * left >= 7 * count) {  // nearly whole (at most one lane in eight settled)
@@ -190,21 +194,25 @@ void run_sorted_queues(const PlanData& plan, const InvertOptions& options, Stage
   }
 }
 
-}  // namespace
-
-void invert_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
-                  const InvertOptions& options, StageSeconds* stages) {
-  with_queues(plan, options, stages, [&] { return invert_batch_lanes(plan, points, results, count, options, stages); });
+// invert_batch, formula_first taken where `first`.
+void run_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+               const InvertOptions& options, StageSeconds* stages, bool first) {
+  with_queues(plan, options, stages,
+              [&] { return invert_batch_lanes(plan, points, results, count, options, stages, first); });
   if (seed_queue().size >= kBatchLanes || far_queue().size >= kBatchLanes)
     run_sorted_queues(plan, options, stages, kBatchLanes);
 }
 
+}  // namespace
+
+void invert_batch(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
+                  const InvertOptions& options, StageSeconds* stages) {
+  run_batch(plan, points, results, count, options, stages, /*first=*/true);
+}
+
 void invert_batch_by_stages(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                             const InvertOptions& options) {
-  with_queues(plan, options, nullptr,
-              [&] { return invert_batch_lanes(plan, points, results, count, options, nullptr, /*first=*/false); });
-  if (seed_queue().size >= kBatchLanes || far_queue().size >= kBatchLanes)
-    run_sorted_queues(plan, options, nullptr, kBatchLanes);
+  run_batch(plan, points, results, count, options, nullptr, /*first=*/false);
 }
 
 void flush_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages) {
