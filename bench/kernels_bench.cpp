@@ -250,6 +250,64 @@ void BM_KernelNearestNewton(benchmark::State& state, const Implementation* impl,
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
 }
 
+// The fused formula path (formula_newton) on points on graphs of functions, x(t) = x0 + w t and
+// y(t) a quotient of degree n, whose linear formula t = (x - x0) / w is exact: kDistinct / kBatch
+// curves, kBatch points each at random t, a frame that scales and shifts, a certificate of eight
+// pieces whose floors pass every point (the engine's common case on the curve).
+struct GraphInputs {
+  int n;
+  std::vector<std::vector<double>> x_num, x_den, y_num, y_den, xy, formula;
+  explicit GraphInputs(int n_) : n(n_) {
+    std::mt19937_64 rng(11 + n);
+    std::uniform_real_distribution<double> coordinate(-1.0, 1.0), weight(0.5, 2.0), unit(0.0, 1.0);
+    for (std::size_t b = 0; b < kDistinct / kBatch; ++b) {
+      const double x0 = coordinate(rng), w = 1.5 + coordinate(rng);
+      std::vector<double> xn, xd, yn, yd;
+      for (int i = 0; i <= n; ++i) {
+        const double wi = weight(rng);
+        xn.push_back(x0 + w * i / n), xd.push_back(1.0), yn.push_back(wi * coordinate(rng)), yd.push_back(wi);
+      }
+      auto value = [&](const std::vector<double>& c, double t) {
+        std::vector<double> f = c;
+        for (int r = 1; r <= n; ++r)
+          for (int i = 0; i <= n - r; ++i) f[i] = (1 - t) * f[i] + t * f[i + 1];
+        return f[0];
+      };
+      std::vector<double> points;
+      for (std::size_t l = 0; l < kBatch; ++l) {
+        const double t = unit(rng);
+        points.push_back(value(xn, t) / value(xd, t) * 2.0);  // the frame halves it back
+        points.push_back(value(yn, t) / value(yd, t) * 2.0);
+      }
+      x_num.push_back(xn), x_den.push_back(xd), y_num.push_back(yn), y_den.push_back(yd), xy.push_back(points);
+      formula.push_back({-x0 / w, 1.0 / w, 0.0, 1.0, 0.0, 0.0});  // N's three terms, then M's
+    }
+  }
+};
+
+// items_per_second = points settled (or left) per second.
+void BM_KernelFormulaNewton(benchmark::State& state, const Implementation* impl, int n) {
+  static std::vector<std::unique_ptr<GraphInputs>> cache(kFormulaNewtonMaxDegree + 1);
+  if (!cache[n]) cache[n] = std::make_unique<GraphInputs>(n);
+  const GraphInputs& in = *cache[n];
+  const NewtonSettings settings{60, 0.125, 1e-6, 40, 1e-9, 1e-10};  // the formula path's (tolerances.hpp)
+  const PointFrame frame{0.5, 0.0, 0.0, 1.0, 0.0};
+  const std::vector<double> monotone(8, 1e-2), unique(8, 1e-12), far(8, 0.5);
+  const PieceCertificate certificate{8, monotone.data(), 0.25, unique.data(), far.data(), 1e-8, 1e-12, 0.5};
+  std::vector<double> t(kBatch), distance(kBatch);
+  std::size_t b = 0, settled = 0;
+  for (auto _ : state) {
+    const PlaneFormula formula{1, 0.0, 0.0, 1.0, 1.0, 1e6, 1e-6, in.formula[b].data(), in.formula[b].data() + 3};
+    const RationalCurve curve{n, in.x_num[b].data(), in.x_den[b].data(), in.y_num[b].data(), in.y_den[b].data()};
+    settled += impl->formula_newton(formula, curve, settings, frame, certificate, 1e-8, kBatch, in.xy[b].data(),
+                                    t.data(), distance.data());
+    benchmark::DoNotOptimize(distance.data());
+    b = (b + 1) % in.xy.size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+  state.counters["settled"] = static_cast<double>(settled) / static_cast<double>(state.iterations() * kBatch);
+}
+
 // items_per_second = parameters evaluated per second.
 void BM_KernelRationalSlope(benchmark::State& state, const Implementation* impl, int n) {
   const CurveInputs& in = curve_inputs(n);
@@ -323,6 +381,11 @@ int register_kernels() {
       benchmark::RegisterBenchmark(benchmark_name("BM_KernelRationalSlope", impl, n).c_str(), BM_KernelRationalSlope,
                                    impl, n);
     }
+  // The formula path of a conic or a cubic in one kernel.
+  for (const Implementation* impl : available_implementations())
+    for (int n = kFormulaNewtonMinDegree; n <= kFormulaNewtonMaxDegree; ++n)
+      benchmark::RegisterBenchmark(benchmark_name("BM_KernelFormulaNewton", impl, n).c_str(), BM_KernelFormulaNewton,
+                                   impl, n);
   // The seed, B stored or formed, at every size around the engine's switch between them
   // (kFormedBMinDegree in engine/src/invert.cpp), where each is compiled.
   for (const Implementation* impl : available_implementations())

@@ -39,8 +39,9 @@ void settle_lanes(const PlanData& plan, const Point* points, std::size_t count, 
   const kernels::NewtonSettings settings = on_curve_newton_settings(/*formula=*/true);
   if (plan.degree >= kernels::kFormulaNewtonMinDegree && plan.degree <= kernels::kFormulaNewtonMaxDegree) {
     static_assert(sizeof(Point) == 2 * sizeof(double));
-    kernel.formula_newton(formula, kernel_curve(plan), settings, point_frame(plan), far_boxes_certificate(plan, tolerance),
-                          tolerance, count, &points[0].x, w.t_refined.data(), w.distance.data());
+    kernel.formula_newton(formula, kernel_curve(plan), settings, point_frame(plan),
+                          far_boxes_certificate(plan, tolerance), tolerance, count, &points[0].x, w.t_refined.data(),
+                          w.distance.data());
     clock.lap(&StageSeconds::kernel);
     return;
   }
