@@ -51,7 +51,7 @@ bool sets_far_lanes_aside(const PlanData& plan, const InvertOptions& options);
 FarLanes far_lanes(const PlanData& plan, double tolerance, std::size_t count, const BatchWorkspace& w);
 
 // Where the batch's active lanes are both far and near (far known): the far ones go to the far
-// queue, the near ones to the seed queue; lane l answers in results[l]. Returns whether they left
+// queue, the near ones to the seed queue; lane l answers in rows[l]. Returns whether they left
 // (none stays in the batch).
 bool set_aside_far(FarLanes far, const Point* points, LaneRows rows, std::size_t count,
                    const BatchWorkspace& w);

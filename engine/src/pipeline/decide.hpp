@@ -38,8 +38,8 @@ inline void answer_fast(const PlanData& plan, double t, double distance, double 
 
 // The fast path's decision for lane l, refined to c, with the kernel's gap: answered here (ok)
 // where the gap is above kFastPathGapRatio or the isolation certificate settles it, else left
-// active (off the segment: to the off-curve path; else to the SVD path). `asked`: the isolation certificate was asked already (the gap pass) and
-// refused the lane.
+// active (off the segment: to the off-curve path; else to the SVD path). `asked`: the isolation
+// certificate was asked already (the gap pass) and refused the lane.
 void decide_with_gap(const PlanData& plan, BatchWorkspace& w, std::size_t l, const Candidate& c,
                      double tolerance, bool asked, PointResult& result);
 

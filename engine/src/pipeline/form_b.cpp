@@ -9,15 +9,19 @@
 
 namespace bezinv::detail {
 
-void form_batch(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count, bool form,
-                BatchWorkspace& w) {
-  const int n = plan.degree, nn = n * n;
-  const std::size_t stride = kBatchLanes;
-  for (std::size_t l = 0; l < count; ++l) {  // the arithmetic alone, so that it vectorizes
+void normalize_batch(const PlanData& plan, const Point* points, std::size_t count, BatchWorkspace& w) {
+  for (std::size_t l = 0; l < count; ++l) {
     const auto uv = plan.normalize(points[l].x, points[l].y);
     w.u[l] = uv[0];
     w.v[l] = uv[1];
   }
+}
+
+void form_batch(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count, bool form,
+                BatchWorkspace& w) {
+  const int n = plan.degree, nn = n * n;
+  const std::size_t stride = kBatchLanes;
+  normalize_batch(plan, points, count, w);
   for (std::size_t l = 0; l < count; ++l) {
     w.active[l] = admit(plan, points[l], w.u[l], w.v[l], rows[l]);
     if (!w.active[l]) w.u[l] = w.v[l] = 0.0;

@@ -9,6 +9,10 @@
 
 namespace bezinv::detail {
 
+// The batch's points normalized into w.u, w.v (PlanData::normalize), in a loop of the arithmetic
+// alone, so that it vectorizes.
+void normalize_batch(const PlanData& plan, const Point* points, std::size_t count, BatchWorkspace& w);
+
 // Normalizes and admits the batch's points into w (u, v, active); with `form`, also forms every
 // active lane's B into w.B (lower triangle; an inactive lane gets the identity, so the kernels see
 // only finite, harmless matrices). A lane whose B overflows is answered by answer_far_point.

@@ -7,6 +7,7 @@
 #include "pipeline/candidate.hpp"
 #include "pipeline/decide.hpp"
 #include "pipeline/fast_path.hpp"
+#include "pipeline/form_b.hpp"
 #include "pipeline/formula_path.hpp"
 #include "refine.hpp"
 
@@ -45,11 +46,7 @@ void settle_lanes(const PlanData& plan, const Point* points, std::size_t count, 
     clock.lap(&StageSeconds::kernel);
     return;
   }
-  for (std::size_t l = 0; l < count; ++l) {  // the arithmetic alone, so that it vectorizes
-    const auto uv = plan.normalize(points[l].x, points[l].y);
-    w.u[l] = uv[0];
-    w.v[l] = uv[1];
-  }
+  normalize_batch(plan, points, count, w);
   clock.lap(&StageSeconds::form_b);
   // N / M is NaN where a coordinate is not finite (so a lane admit() would refuse never gets a
   // t), near a base point and far out; the Newton kernel leaves a NaN t (and a t off [0, 1])
