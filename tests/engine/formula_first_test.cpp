@@ -104,13 +104,12 @@ void check_curve(const Curve& curve, const InvertOptions& options, std::mt19937_
       const std::size_t count = std::min(detail::kBatchLanes, points.size() - s);
       detail::invert_batch(data, &shuffled[s], &first[s], count, options, nullptr);
       // Which lanes formula_first answers itself, for the tally.
-      std::array<std::uint8_t, detail::kBatchLanes> left_of;
       std::array<PointResult, detail::kBatchLanes> scratch;
       detail::StageClock clock(nullptr);
-      const std::size_t left = detail::formula_first(data, &shuffled[s], scratch.data(), count, options,
-                                                     detail::batch_workspace(), clock, left_of);
+      const detail::FormulaLeft left =
+          detail::formula_first(data, &shuffled[s], scratch.data(), count, options, detail::batch_workspace(), clock);
       std::vector<bool> leaves(count, false);
-      for (std::size_t k = 0; k < left; ++k) leaves[left_of[k]] = true;
+      for (std::size_t k = 0; k < left.count; ++k) leaves[left.lane_of[k]] = true;
       for (std::size_t l = 0; l < count; ++l) {
         tally.answered_first += !leaves[l];
         if (!leaves[l]) {

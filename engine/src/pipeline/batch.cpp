@@ -64,10 +64,12 @@ bool route_undecided(const PlanData& plan, LaneRows rows, std::size_t count, con
   return retried;
 }
 
-// The fast path's stages after the seed, then the SVD path's routing, for w's lanes 0..count.
+// The fast path's stages after the seed, then the SVD path's routing, for w's lanes 0..count
+// (newton_left: fast_path_decide's).
 bool decide_lanes(const PlanData& plan, LaneRows rows, std::size_t count, const InvertOptions& options,
-                  BatchWorkspace& w, StageClock& clock, bool b_formed, StageSeconds* stages) {
-  fast_path_decide(plan, rows, count, options, w, clock);
+                  BatchWorkspace& w, StageClock& clock, bool b_formed, StageSeconds* stages,
+                  LaneSet newton_left = {}) {
+  fast_path_decide(plan, rows, count, options, w, clock, newton_left);
   off_curve_path(plan, options, count, w, rows, clock);
   return route_undecided(plan, rows, count, options, w, clock, b_formed, stages);
 }
@@ -101,6 +103,20 @@ bool invert_lanes(const PlanData& plan, const Point* points, LaneRows rows, std:
   return decide_lanes(plan, rows, count, options, w, clock, !formed_b, stages);
 }
 
+// The lanes formula_first left, in w's lanes 0..count as it left them (u, v, N / M in t_algebraic;
+// lane l's point points[l], its answer to rows[l]), through the rest of the stages: admitted,
+// seeded by N / M (by B where that is NaN), refined (the lanes of newton_left from where
+// formula_first's Newton iteration left them), decided. Returns whether it left lanes in the seed
+// retry's queue.
+bool invert_formula_left(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
+                         LaneSet newton_left, const InvertOptions& options, StageSeconds* stages, StageClock& clock) {
+  BatchWorkspace& w = batch_workspace();
+  admit_batch(plan, points, rows, count, w);
+  clock.lap(&StageSeconds::form_b);
+  fast_path_seed(plan, points, rows, count, options, w, clock, FarLanes{}, /*formula_given=*/true);
+  return decide_lanes(plan, rows, count, options, w, clock, /*b_formed=*/false, stages, newton_left);
+}
+
 // formula_first settles nearly every lane of a batch on the curve and none of a batch off it (noise
 // of 1e-6 of the diagonal and more), where its kernel costs ~6% of what the stages then spend on
 // each lane. So a thread whose batch it left nearly whole skips it for the next batches, twice as
@@ -130,20 +146,32 @@ bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
     --skip.skip;
     return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock);
   }
-  std::array<std::uint8_t, kBatchLanes> left_of;
-  const std::size_t left = formula_first(plan, points, results, count, options, batch_workspace(), clock, left_of);
-  if (8 * left >= 7 * count) {  // nearly whole (at most one lane in eight settled)
+  BatchWorkspace& w = batch_workspace();
+  const FormulaLeft left = formula_first(plan, points, results, count, options, w, clock);
+  if (8 * left.count >= 7 * count) {  // nearly whole (at most one lane in eight settled)
     skip.after = std::min(kFormulaFirstMaxSkip, std::max<std::size_t>(1, 2 * skip.after));
     skip.skip = skip.after;
   } else {
     skip.after = 0;
   }
-  if (left == 0) return false;
-  if (left == count) return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock);
-  std::array<Point, kBatchLanes> left_points;
-  std::array<PointResult*, kBatchLanes> left_rows;
-  for (std::size_t k = 0; k < left; ++k) left_points[k] = points[left_of[k]], left_rows[k] = &results[left_of[k]];
-  return invert_lanes(plan, left_points.data(), LaneRows(left_rows.data()), left, options, stages, clock);
+  if (left.count == 0) return false;
+  if (left.count == count)  // the whole batch, in place
+    return invert_formula_left(plan, points, LaneRows(results), count, left.newton_left, options, stages, clock);
+  // Part of the batch: its lanes wait for a batch's worth in the stages queue (by_kind.hpp).
+  queue_for_stages(points, results, left, w);
+  clock.lap(&StageSeconds::decide);
+  return false;
+}
+
+// The last m lanes of the stages queue (by_kind.hpp), through the rest of the stages.
+bool invert_stages_queue(const PlanData& plan, std::size_t m, const InvertOptions& options, StageSeconds* stages) {
+  StagesQueue& queue = stages_queue();
+  StageClock clock(stages);
+  const std::size_t first = queue.size - m;
+  const LaneSet newton_left = take_from_stages_queue(m, batch_workspace());
+  // Their points and rows stay in the queue while they run (invert_formula_left queues none).
+  return invert_formula_left(plan, &queue.point[first], LaneRows(&queue.target[first]), m, newton_left, options,
+                             stages, clock);
 }
 
 // The first m lanes of the seed queue (by_kind.hpp), as a batch before its seed.
@@ -178,9 +206,9 @@ void with_queues(const PlanData& plan, const InvertOptions& options, StageSecond
   if (lanes() && seed_retry_queue().size >= kSeedRetryFlushLanes) flush_seed_retry_queue(plan, options, stages);
 }
 
-// Runs the seed queue's and the far queue's lanes, a batch at a time, while at least `least` wait
-// in one: each stays below kBatchLanes lanes between batches (the room their capacity leaves for
-// one more).
+// Runs the seed queue's, the far queue's and the stages queue's lanes, a batch at a time, while at
+// least `least` wait in one: each stays below kBatchLanes lanes between batches (the room their
+// capacity leaves for one more).
 void run_sorted_queues(const PlanData& plan, const InvertOptions& options, StageSeconds* stages, std::size_t least) {
   SeedQueue& seeds = seed_queue();
   while (seeds.size > 0 && seeds.size >= least) {
@@ -192,6 +220,11 @@ void run_sorted_queues(const PlanData& plan, const InvertOptions& options, Stage
     const std::size_t m = std::min(far.size, kBatchLanes);
     with_queues(plan, options, stages, [&] { return invert_far_queue(plan, m, options, stages); });
   }
+  StagesQueue& left = stages_queue();
+  while (left.size > 0 && left.size >= least) {
+    const std::size_t m = std::min(left.size, kBatchLanes);
+    with_queues(plan, options, stages, [&] { return invert_stages_queue(plan, m, options, stages); });
+  }
 }
 
 // invert_batch, formula_first taken where `first`.
@@ -199,7 +232,7 @@ void run_batch(const PlanData& plan, const Point* points, PointResult* results, 
                const InvertOptions& options, StageSeconds* stages, bool first) {
   with_queues(plan, options, stages,
               [&] { return invert_batch_lanes(plan, points, results, count, options, stages, first); });
-  if (seed_queue().size >= kBatchLanes || far_queue().size >= kBatchLanes)
+  if (seed_queue().size >= kBatchLanes || far_queue().size >= kBatchLanes || stages_queue().size >= kBatchLanes)
     run_sorted_queues(plan, options, stages, kBatchLanes);
 }
 
@@ -222,7 +255,7 @@ void flush_queues(const PlanData& plan, const InvertOptions& options, StageSecon
 }
 
 QueueScope::~QueueScope() {
-  seed_queue().size = far_queue().size = 0;
+  seed_queue().size = far_queue().size = stages_queue().size = 0;
   seed_retry_queue().size = 0;
   svd_queue().size = 0;
 }

@@ -1,5 +1,6 @@
 #include "pipeline/by_kind.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "isolation.hpp"
@@ -15,6 +16,33 @@ SeedQueue& seed_queue() {
 FarQueue& far_queue() {
   thread_local FarQueue queue;
   return queue;
+}
+
+StagesQueue& stages_queue() {
+  thread_local StagesQueue queue;
+  return queue;
+}
+
+void queue_for_stages(const Point* points, PointResult* rows, const FormulaLeft& left, const BatchWorkspace& w) {
+  StagesQueue& queue = stages_queue();
+  const std::size_t first = queue.size, count = left.count;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t l = left.lane_of[k], q = first + k;
+    queue.u[q] = w.u[l], queue.v[q] = w.v[l], queue.t[q] = w.t_algebraic[l];
+    queue.point[q] = points[l], queue.target[q] = &rows[l];
+    queue.newton_left[q] = w.distance[l] == std::numeric_limits<double>::infinity();  // newton_left's lanes
+  }
+  queue.size = first + count;
+}
+
+LaneSet take_from_stages_queue(std::size_t m, BatchWorkspace& w) {
+  StagesQueue& queue = stages_queue();
+  const std::size_t first = queue.size - m;
+  std::copy_n(&queue.u[first], m, w.u.begin());
+  std::copy_n(&queue.v[first], m, w.v.begin());
+  std::copy_n(&queue.t[first], m, w.t_algebraic.begin());
+  queue.size = first;
+  return LaneSet::of_bytes(&queue.newton_left[first], m);
 }
 
 bool sets_far_lanes_aside(const PlanData& plan, const InvertOptions& options) {

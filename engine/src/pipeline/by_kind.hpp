@@ -8,12 +8,20 @@
 // and its near lanes to a per-thread seed queue; each queue, once it holds a batch's worth, goes
 // on as a batch of one kind (the far queue's from the refinement on, the seed queue's from the
 // seed). No lane's answer depends on the others in its batch or its queue.
+//
+// On the formula path, formula_first (formula_first.hpp) sorts a batch the same way: the lanes it
+// settles (on the curve) answer there, and the others go, with what it found for them, to a
+// per-thread stages queue, which goes on through the stages once it holds a batch's worth. In a
+// batch of both kinds, the lanes it leaves would otherwise run as a batch part full: every SIMD
+// group and every stage's loop of it run for half the lanes they hold in a batch off the curve.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 
 #include "bezinv/invert.hpp"
 #include "plan_data.hpp"
 #include "pipeline/fast_path.hpp"
+#include "pipeline/formula_first.hpp"
 #include "pipeline/workspace.hpp"
 
 namespace bezinv::detail {
@@ -37,9 +45,20 @@ struct FarQueue {
   std::size_t size = 0;
 };
 
+// Lanes formula_first left, waiting for the rest of the stages: the point as given and as
+// normalized, N / M, and whether the first Newton iteration left it (FormulaLeft::newton_left).
+struct StagesQueue {
+  std::array<double, kSortedQueueLanes> u, v, t;
+  std::array<std::uint8_t, kSortedQueueLanes> newton_left;
+  std::array<Point, kSortedQueueLanes> point;
+  std::array<PointResult*, kSortedQueueLanes> target;
+  std::size_t size = 0;
+};
+
 // This thread's queues.
 SeedQueue& seed_queue();
 FarQueue& far_queue();
+StagesQueue& stages_queue();
 
 // Whether this plan's batches may set their far lanes aside: the fast path's two passes seeded from
 // B (degree 3 and above; not the formula path, whose lanes are not seeded from B). Whether the
@@ -55,6 +74,16 @@ FarLanes far_lanes(const PlanData& plan, double tolerance, std::size_t count, co
 // (none stays in the batch).
 bool set_aside_far(FarLanes far, const Point* points, LaneRows rows, std::size_t count,
                    const BatchWorkspace& w);
+
+// Puts the lanes formula_first left of a batch (its points, consecutive rows, and w as
+// formula_first left it) in the stages queue.
+void queue_for_stages(const Point* points, PointResult* rows, const FormulaLeft& left, const BatchWorkspace& w);
+
+// Puts the stages queue's last m lanes (m <= kBatchLanes) into w's lanes 0..m (u, v, and N / M in
+// t_algebraic), and takes them out of the queue: their points and rows are the queue's, from
+// stages_queue().point[size] and .target[size] on (size as it is then), until lanes are queued
+// again. Returns the lanes the first Newton iteration left.
+LaneSet take_from_stages_queue(std::size_t m, BatchWorkspace& w);
 
 // Puts the seed queue's first m lanes (m <= kBatchLanes) into w's lanes 0..m as active lanes, their
 // points in `points` and rows in `rows`, and moves the rest of the queue to its front.

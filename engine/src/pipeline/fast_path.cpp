@@ -173,8 +173,10 @@ namespace {
 // batch. A seed that did not settle has no t and an infinite estimate (the seeds leave its residual
 // uncomputed): it is not in the on-curve lanes' groups, and, like every off-curve lane without a
 // start in [0, 1], it takes no place in nearest_newton's either (off the curve, most lanes).
+// The lanes of newton_left are left as rational_newton's first iteration would leave them (distance
+// +inf, t unmoved): formula_first ran that iteration for them.
 [[gnu::noinline]] void refine_grouped(const kernels::Implementation& kernel, const PlanData& plan, std::size_t count,
-                                      bool formula, BatchWorkspace& w) {
+                                      bool formula, BatchWorkspace& w, LaneSet newton_left) {
   constexpr double kOnCurveEstimate = 1e-12;  // on the curve: ~1e-16; 1e-6 of the diagonal off it: ~1e-7
   const kernels::RationalCurve curve = kernel_curve(plan);
   const kernels::NewtonSettings settings = on_curve_newton_settings(formula);
@@ -186,18 +188,27 @@ namespace {
     else w.distance[l] = PointResult::nan;  // as nearest_newton would give it back
   }
   std::size_t left = 0;
-  if (near == count) {  // the common case on the curve: in place
+  const bool known_left = !newton_left.empty();
+  if (near == count && !known_left) {  // the common case on the curve: in place
     left = kernel.rational_newton(curve, settings, count, w.u.data(), w.v.data(), w.t_refined.data(),
                                   w.distance.data());
   } else if (near > 0) {
     std::array<double, kBatchLanes> u, v, t, distance;
+    std::array<std::uint8_t, kBatchLanes> newton_of;  // the near lanes rational_newton runs for
+    std::size_t m = 0;
     for (std::size_t k = 0; k < near; ++k) {
       const std::size_t l = near_of[k];
-      u[k] = w.u[l], v[k] = w.v[l], t[k] = w.t_refined[l];
+      if (known_left && newton_left.has(l)) {
+        w.distance[l] = std::numeric_limits<double>::infinity();
+        ++left;
+        continue;
+      }
+      newton_of[m] = static_cast<std::uint8_t>(l);
+      u[m] = w.u[l], v[m] = w.v[l], t[m] = w.t_refined[l], ++m;
     }
-    left = kernel.rational_newton(curve, settings, near, u.data(), v.data(), t.data(), distance.data());
-    for (std::size_t k = 0; k < near; ++k) {
-      const std::size_t l = near_of[k];
+    if (m > 0) left += kernel.rational_newton(curve, settings, m, u.data(), v.data(), t.data(), distance.data());
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t l = newton_of[k];
       w.t_refined[l] = t[k], w.distance[l] = distance[k];
     }
   }
@@ -247,7 +258,8 @@ bool takes_two_passes(const PlanData& plan, bool formula) { return plan.degree >
 }  // namespace
 
 void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
-                    const InvertOptions& options, BatchWorkspace& w, StageClock& clock, FarLanes far) {
+                    const InvertOptions& options, BatchWorkspace& w, StageClock& clock, FarLanes far,
+                    bool formula_given) {
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
   const double tolerance = normalized_tolerance(plan, options);
@@ -257,7 +269,7 @@ void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, st
   const bool two_passes = takes_two_passes(plan, formula);
   bool read_out = true;  // t still to be read from w.z
   if (formula) {
-    formula_or_seed(plan, points, rows, count, w);
+    formula_or_seed(plan, points, rows, count, w, formula_given);
     clock.lap(&StageSeconds::kernel);
   } else if (formed_b) {
     std::array<double, kBatchLanes> poison;
@@ -282,7 +294,7 @@ void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, st
 }
 
 void fast_path_decide(const PlanData& plan, LaneRows rows, std::size_t count, const InvertOptions& options,
-                      BatchWorkspace& w, StageClock& clock) {
+                      BatchWorkspace& w, StageClock& clock, LaneSet newton_left) {
   const double tolerance = normalized_tolerance(plan, options);
   const kernels::Implementation& kernel = kernels::active_implementation();
   const bool formula = takes_formula_path(plan, options);
@@ -295,7 +307,7 @@ void fast_path_decide(const PlanData& plan, LaneRows rows, std::size_t count, co
   // settle(), as it does a lane that ends at an end of the segment off the curve (settle() then
   // also looks along the extension).
   std::copy_n(w.t_algebraic.begin(), count, w.t_refined.begin());
-  refine_grouped(kernel, plan, count, formula, w);
+  refine_grouped(kernel, plan, count, formula, w, newton_left);
   detail::degree_drops_batch(plan, w.u.data(), w.v.data(), count, w.drops.data());
   if (two_passes) {
     // The common case of pass 1, for the whole batch first: a lane refined onto the segment within

@@ -57,14 +57,19 @@ bool forms_b_late(const PlanData& plan, const InvertOptions& options);
 
 // Stage 2 and the read-out for the batch's active lanes: w.t_algebraic (NaN where the seed did
 // not settle), w.defect and w.estimate per lane (with degree 2's w.z and sigma_next).
+// formula_given (the formula path): w.t_algebraic holds N / M for every lane already
+// (formula_first left it there).
 void fast_path_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
-                    const InvertOptions& options, BatchWorkspace& w, StageClock& clock, FarLanes far = {});
+                    const InvertOptions& options, BatchWorkspace& w, StageClock& clock, FarLanes far = {},
+                    bool formula_given = false);
 
 // Stages 3-4, the refinement and the decisions it allows, for w's lanes 0..count as
 // fast_path_seed left them (or as by_kind.hpp's far queue puts them back); lane l's answer goes to
-// rows[l].
+// rows[l]. newton_left: formula lanes whose first rational_newton iteration, from t_algebraic,
+// formula_first ran already, and which it left to the off-curve kernels (their first distance
+// beyond the leave distance): they join those kernels' lanes as if the refinement had left them.
 void fast_path_decide(const PlanData& plan, LaneRows rows, std::size_t count, const InvertOptions& options,
-                      BatchWorkspace& w, StageClock& clock);
+                      BatchWorkspace& w, StageClock& clock, LaneSet newton_left = {});
 
 // The full kernel (pivoted LU, `iterations` solves: kernels::kNullVectorIterations in pass 2, more
 // for the seed retry; the sigma_{n-1} estimate) for the lanes

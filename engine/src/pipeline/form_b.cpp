@@ -17,15 +17,19 @@ void normalize_batch(const PlanData& plan, const Point* points, std::size_t coun
   }
 }
 
+void admit_batch(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count, BatchWorkspace& w) {
+  for (std::size_t l = 0; l < count; ++l) {
+    w.active[l] = admit(plan, points[l], w.u[l], w.v[l], rows[l]);
+    if (!w.active[l]) w.u[l] = w.v[l] = 0.0;
+  }
+}
+
 void form_batch(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count, bool form,
                 BatchWorkspace& w) {
   const int n = plan.degree, nn = n * n;
   const std::size_t stride = kBatchLanes;
   normalize_batch(plan, points, count, w);
-  for (std::size_t l = 0; l < count; ++l) {
-    w.active[l] = admit(plan, points[l], w.u[l], w.v[l], rows[l]);
-    if (!w.active[l]) w.u[l] = w.v[l] = 0.0;
-  }
+  admit_batch(plan, points, rows, count, w);
   if (!form) return;
   // A kernel, so that it runs in the CPU's widest vectors (this file is compiled for baseline
   // x86-64). An entry that overflowed makes its lane's poison (sum of entry * 0) NaN.

@@ -13,6 +13,10 @@ namespace bezinv::detail {
 // alone, so that it vectorizes.
 void normalize_batch(const PlanData& plan, const Point* points, std::size_t count, BatchWorkspace& w);
 
+// Admits the batch's points (decide.hpp's admit), normalized in w.u, w.v: w.active; a lane
+// refused gets u = v = 0 and its answer in rows[l].
+void admit_batch(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count, BatchWorkspace& w);
+
 // Normalizes and admits the batch's points into w (u, v, active); with `form`, also forms every
 // active lane's B into w.B (lower triangle; an inactive lane gets the identity, so the kernels see
 // only finite, harmless matrices). A lane whose B overflows is answered by answer_far_point.

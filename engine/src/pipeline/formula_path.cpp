@@ -118,14 +118,17 @@ double formula_parameter(const FormulaPathData& f, double u, double v) {
 }
 
 void formula_or_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
-                     BatchWorkspace& w) {
+                     BatchWorkspace& w, bool formula_given) {
   const FormulaPathData& f = fast_path_formula(plan);
   const int n = plan.degree;
   const std::size_t stride = kBatchLanes;
-  std::array<double, kBatchLanes> formula_t;
-  // Every lane, inactive ones too: a batch is nearly all active.
-  kernels::active_implementation().formula_parameter(plane_formula(f), count, w.u.data(), w.v.data(),
-                                                     formula_t.data());
+  std::array<double, kBatchLanes> computed;
+  // Every lane, inactive ones too: a batch is nearly all active. (Given, it is read in lane l
+  // before lane l's t_algebraic is written.)
+  const double* formula_t = formula_given ? w.t_algebraic.data() : computed.data();
+  if (!formula_given)
+    kernels::active_implementation().formula_parameter(plane_formula(f), count, w.u.data(), w.v.data(),
+                                                       computed.data());
   std::size_t seeded = 0;
   for (std::size_t l = 0; l < count; ++l) {
     w.from_formula[l] = 0;

@@ -64,9 +64,10 @@ kernels::PlaneFormula plane_formula(const FormulaPathData& f);
 
 // The algebraic step of the fast path for every active lane: t_algebraic, defect and the sigma_min
 // estimate (NaN on formula lanes), from_formula. The seed's lanes have their B formed here; a lane
-// whose B overflows is answered as a far point.
+// whose B overflows is answered as a far point. formula_given: w.t_algebraic holds N / M for every
+// lane already (formula_first left it there), else the formula_parameter kernel computes it.
 void formula_or_seed(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
-                     BatchWorkspace& w);
+                     BatchWorkspace& w, bool formula_given = false);
 
 // With refine off: every active lane whose N/M is a parameter of the segment within the tolerance
 // of the point, with no degree drop there and the isolation certificate proving no other branch

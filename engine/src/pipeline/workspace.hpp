@@ -1,6 +1,7 @@
 #pragma once
 // The batch a thread works on: kBatchLanes points of one curve, stored lane by lane (structure of
 // arrays), so that each stage is one loop over the batch (docs/README.md, "How a point flows").
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstddef>
@@ -28,6 +29,20 @@ class LaneSet {
  public:
   void add(std::size_t l, bool in) { words_[l / 64] |= static_cast<std::uint64_t>(in) << (l % 64); }
   bool has(std::size_t l) const { return (words_[l / 64] >> (l % 64)) & 1u; }
+  // Lanes 64 i .. 64 i + 63 as the bits of `word` (lane 64 i + b: bit b), for a set built a word at
+  // a time in a register (add() stores to memory at every lane).
+  void set_word(std::size_t i, std::uint64_t word) { words_[i] = word; }
+  // The lanes l < count whose byte flags[l] is not 0 (count <= kBatchLanes).
+  static LaneSet of_bytes(const std::uint8_t* flags, std::size_t count) {
+    LaneSet set;
+    for (std::size_t i = 0; 64 * i < count; ++i) {
+      std::uint64_t word = 0;
+      const std::size_t end = std::min<std::size_t>(64, count - 64 * i);
+      for (std::size_t b = 0; b < end; ++b) word |= static_cast<std::uint64_t>(flags[64 * i + b] != 0) << b;
+      set.set_word(i, word);
+    }
+    return set;
+  }
   bool empty() const {
     std::uint64_t any = 0;
     for (const std::uint64_t word : words_) any |= word;

@@ -42,7 +42,7 @@ using FormulaParameterKernel = void (*)(const PlaneFormula& formula, std::size_t
 using FormulaNewtonKernel = std::size_t (*)(const PlaneFormula& formula, const RationalCurve& curve,
                                             const NewtonSettings& settings, const PointFrame& frame,
                                             const PieceCertificate& certificate, double tolerance, std::size_t count,
-                                            const double* xy, double* t, double* distance);
+                                            const double* xy, const FormulaNewtonOut& out);
 
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);

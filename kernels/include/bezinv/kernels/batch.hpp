@@ -131,6 +131,20 @@ struct PointFrame {
   double scale, centre_x, centre_y, cos, sin;
 };
 
+// What formula_newton leaves in lane l < count of each array (count long): the steps it took, so
+// that the caller need not take them again for a lane it does not settle.
+struct FormulaNewtonOut {
+  double* u;          // the point normalized by the frame (PointFrame)
+  double* v;
+  double* t_formula;  // N / M, as formula_parameter gives it (NaN where the formula is not used)
+  double* t;          // a settled lane's t (meaningless in the others)
+  // A settled lane's distance (at most the tolerance); +inf where rational_newton's first
+  // iteration leaves the lane (t_formula in [0, 1], its first distance above
+  // settings.leave_distance: rational_newton gives it that distance and leaves t_formula as it is);
+  // NaN in every other lane.
+  double* distance;
+};
+
 // The isolation certificate's first test as formula_newton makes it (the engine's
 // isolated_by_far_boxes): [0, 1] cut into `pieces` equal pieces, t in piece
 // j = min(pieces - 1, int(t pieces)); a lane at t and distance d passes where
@@ -318,13 +332,13 @@ struct Implementation {
   // rational_newton's first iteration from that t with `settings` (settings.leave_distance
   // included). Where that iteration settles the lane (its last step, or a step that converged where
   // t's last ulps do not move P), at a distance of at most `tolerance` that `certificate` passes:
-  // t[l] and distance[l] as formula_parameter then rational_newton give them, bit for bit. Every
-  // other lane gets distance[l] = NaN (t[l] meaningless): the caller takes it the long way.
-  // Returns the number of lanes settled. curve.degree in [kFormulaNewtonMinDegree,
-  // kFormulaNewtonMaxDegree], formula.degree in formula_parameter's range.
+  // t and distance as formula_parameter then rational_newton give them, bit for bit. The others are
+  // the caller's to take the long way, from what out says of them (FormulaNewtonOut). Returns the
+  // number of lanes settled. curve.degree in [kFormulaNewtonMinDegree, kFormulaNewtonMaxDegree],
+  // formula.degree in formula_parameter's range.
   std::size_t (*formula_newton)(const PlaneFormula& formula, const RationalCurve& curve, const NewtonSettings& settings,
                                 const PointFrame& frame, const PieceCertificate& certificate, double tolerance,
-                                std::size_t count, const double* xy, double* t, double* distance);
+                                std::size_t count, const double* xy, const FormulaNewtonOut& out);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the
