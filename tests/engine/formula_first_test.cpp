@@ -197,5 +197,63 @@ TEST(FormulaFirst, TheCurvesOwnFormulaFromDegreeFourToo) {
   EXPECT_GT(tally.on_curve_first, tally.on_curve * 9 / 10);
 }
 
+// A batch formula_first leaves whole (every point off the curve) goes on in place, from what it
+// computed for its lanes; a batch it leaves in part sends its lanes to the stages queue, run once
+// it holds a batch's worth. Here: a batch on the curve (after which formula_first is not skipped),
+// then one off it at noise 1e-8 to 1e-2 of the diagonal, then batches of both kinds; every row
+// against the stages' row, and formula_first seen to leave the off-curve batch whole, most of its
+// lanes left by the first Newton iteration (the lanes that path takes up).
+TEST(FormulaFirst, LanesItLeavesGoOnFromWhereItLeftThem) {
+  std::mt19937_64 rng(20261209);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), exponent(-8.0, -2.0);
+  std::size_t whole = 0, newton_left = 0;
+  for (const InvertOptions options : {InvertOptions{}, InvertOptions{.algebraic = Algebraic::formula}})
+    for (int n : {2, 3, 6})
+      for (int c = 0; c < (test_support::kSanitizerTree ? 2 : 8); ++c) {
+        const Curve curve =
+            datasets::random_curve(CurveKind::rational_bezier, n, rng, datasets::ControlPolygon::perturbed_arc);
+        const InversionPlan plan = make_plan(curve);
+        const detail::PlanData& data = detail::plan_data(plan);
+        if (!detail::takes_formula_first(data, options)) continue;
+        const std::size_t lanes = detail::kBatchLanes;
+        std::vector<Point> points;
+        auto off_curve = [&] {
+          const Point p = datasets::on_curve(curve, unit(rng));
+          const double angle = 2 * M_PI * unit(rng), d = std::pow(10.0, exponent(rng)) * plan.diagonal();
+          return Point{p.x + d * std::cos(angle), p.y + d * std::sin(angle)};
+        };
+        for (std::size_t k = 0; k < lanes; ++k) points.push_back(datasets::on_curve(curve, unit(rng)));
+        for (std::size_t k = 0; k < lanes; ++k) points.push_back(off_curve());
+        for (std::size_t k = 0; k < 5 * lanes; ++k)
+          points.push_back(k % 2 ? off_curve() : datasets::on_curve(curve, unit(rng)));
+        {  // formula_first on the off-curve batch alone: it leaves it whole
+          std::array<PointResult, detail::kBatchLanes> scratch;
+          detail::StageClock clock(nullptr);
+          const detail::FormulaLeft left =
+              detail::formula_first(data, &points[lanes], scratch.data(), lanes, options, detail::batch_workspace(), clock);
+          whole += left.count == lanes;
+          for (std::size_t l = 0; l < lanes; ++l) newton_left += left.newton_left.has(l);
+        }
+        std::vector<PointResult> first(points.size()), staged(points.size());
+        {
+          const detail::QueueScope scope;
+          for (std::size_t s = 0; s < points.size(); s += lanes)
+            detail::invert_batch(data, &points[s], &first[s], std::min(lanes, points.size() - s), options, nullptr);
+          detail::flush_queues(data, options, nullptr);
+        }
+        {
+          const detail::QueueScope scope;
+          for (std::size_t s = 0; s < points.size(); s += lanes)
+            detail::invert_batch_by_stages(data, &points[s], &staged[s], std::min(lanes, points.size() - s), options);
+          detail::flush_queues(data, options, nullptr);
+        }
+        for (std::size_t i = 0; i < points.size(); ++i)
+          ASSERT_TRUE(test_support::same_row(first[i], staged[i]))
+              << "degree " << n << " curve " << c << " point " << i << " (" << points[i].x << ", " << points[i].y << ")";
+      }
+  EXPECT_GT(whole, 0u);
+  EXPECT_GT(newton_left, whole * detail::kBatchLanes / 2);
+}
+
 }  // namespace
 }  // namespace bezinv
