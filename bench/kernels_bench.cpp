@@ -294,13 +294,14 @@ void BM_KernelFormulaNewton(benchmark::State& state, const Implementation* impl,
   const PointFrame frame{0.5, 0.0, 0.0, 1.0, 0.0};
   const std::vector<double> monotone(8, 1e-2), unique(8, 1e-12), far(8, 0.5);
   const PieceCertificate certificate{8, monotone.data(), 0.25, unique.data(), far.data(), 1e-8, 1e-12, 0.5};
-  std::vector<double> u(kBatch), v(kBatch), t_formula(kBatch), t(kBatch), distance(kBatch);
+  std::vector<double> t(kBatch), distance(kBatch), u(kBatch), v(kBatch), t_formula(kBatch);
+  const FormulaStart start{u.data(), v.data(), t_formula.data()};
   std::size_t b = 0, settled = 0;
   for (auto _ : state) {
     const PlaneFormula formula{1, 0.0, 0.0, 1.0, 1.0, 1e6, 1e-6, in.formula[b].data(), in.formula[b].data() + 3};
     const RationalCurve curve{n, in.x_num[b].data(), in.x_den[b].data(), in.y_num[b].data(), in.y_den[b].data()};
     settled += impl->formula_newton(formula, curve, settings, frame, certificate, 1e-8, kBatch, in.xy[b].data(),
-                                    {u.data(), v.data(), t_formula.data(), t.data(), distance.data()});
+                                    t.data(), distance.data(), &start);
     benchmark::DoNotOptimize(distance.data());
     b = (b + 1) % in.xy.size();
   }

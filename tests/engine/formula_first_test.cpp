@@ -229,10 +229,10 @@ TEST(FormulaFirst, LanesItLeavesGoOnFromWhereItLeftThem) {
         {  // formula_first on the off-curve batch alone: it leaves it whole
           std::array<PointResult, detail::kBatchLanes> scratch;
           detail::StageClock clock(nullptr);
-          const detail::FormulaLeft left =
-              detail::formula_first(data, &points[lanes], scratch.data(), lanes, options, detail::batch_workspace(), clock);
+          const detail::FormulaLeft left = detail::formula_first(data, &points[lanes], scratch.data(), lanes, options,
+                                                                 detail::batch_workspace(), clock);
           whole += left.count == lanes;
-          for (std::size_t l = 0; l < lanes; ++l) newton_left += left.newton_left.has(l);
+          for (std::size_t l = 0; l < lanes; ++l) newton_left += left.first_iteration_leaves.has(l);
         }
         std::vector<PointResult> first(points.size()), staged(points.size());
         {
@@ -248,8 +248,8 @@ TEST(FormulaFirst, LanesItLeavesGoOnFromWhereItLeftThem) {
           detail::flush_queues(data, options, nullptr);
         }
         for (std::size_t i = 0; i < points.size(); ++i)
-          ASSERT_TRUE(test_support::same_row(first[i], staged[i]))
-              << "degree " << n << " curve " << c << " point " << i << " (" << points[i].x << ", " << points[i].y << ")";
+          ASSERT_TRUE(test_support::same_row(first[i], staged[i])) << "degree " << n << " curve " << c << " point " << i
+                                                                   << " (" << points[i].x << ", " << points[i].y << ")";
       }
   EXPECT_GT(whole, 0u);
   EXPECT_GT(newton_left, whole * detail::kBatchLanes / 2);

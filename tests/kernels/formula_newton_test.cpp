@@ -6,9 +6,10 @@
 // polynomial) and y(t) a polynomial or a quotient of its own (separate denominators), whose
 // formula t = (x - x0) / w is exact: the points, made at a known t, start at it. Steep graphs
 // (|P'| up to 1e3) take the converged steps whose last ulps move P, and the ends the clamped steps.
-// For every lane, settled or not, what it leaves for the caller must be what those kernels give:
-// the normalized point, N / M, and +inf exactly where rational_newton's first iteration leaves the
-// lane (points moved off the graph by 1e-16 to 1e-8, the leave distance 1e-10 among them).
+// With somewhere to put them, every lane's normalized point and N / M must be the kernels' too.
+// For a lane it does not settle (t NaN), its first distance must tell exactly the lanes
+// rational_newton's first iteration leaves (distance +inf there): points moved off the graph by
+// 1e-16 to 1e-8, the leave distance 1e-10 among them.
 // tests/engine/formula_first_test.cpp checks the engine's rows with it against the stages' rows.
 #include <gtest/gtest.h>
 
@@ -136,35 +137,37 @@ TEST(FormulaNewton, SettlesLanesWithTheBitsOfTheKernelsItFuses) {
                 v[l] = 0.0 * dx + 1.0 * dy;
               }
               implementation->formula_parameter(formula, count, u.data(), v.data(), t_ref.data());
-              const std::vector<double> t_formula_ref = t_ref;
+              const std::vector<double> t_formula = t_ref;
               implementation->rational_newton(normalized.view(shared), kFormulaPathSettings, count, u.data(), v.data(),
                                               t_ref.data(), d_ref.data());
-              std::vector<double> ku(count, -1.0), kv(count, -1.0), t_formula(count, -1.0), t(count, -1.0),
-                  d(count, -1.0);
-              const std::size_t got = implementation->formula_newton(
-                  formula, normalized.view(shared), kFormulaPathSettings, frame, certificate, tolerance, count,
-                  xy.data(), {ku.data(), kv.data(), t_formula.data(), t.data(), d.data()});
-              std::vector<double> pu(count), pv(count), pt_formula(count), t_pieces(count, -1.0),
-                  d_pieces(count, -1.0);
-              implementation->formula_newton(
-                  formula, normalized.view(shared), kFormulaPathSettings, frame, by_pieces, tolerance, count,
-                  xy.data(), {pu.data(), pv.data(), pt_formula.data(), t_pieces.data(), d_pieces.data()});
+              std::vector<double> t(count, -1.0), d(count, -1.0), ku(count, -1.0), kv(count, -1.0),
+                  kt(count, -1.0);
+              const FormulaStart on_the_way{ku.data(), kv.data(), kt.data()};
+              const std::size_t got =
+                  implementation->formula_newton(formula, normalized.view(shared), kFormulaPathSettings, frame,
+                                                 certificate, tolerance, count, xy.data(), t.data(), d.data(),
+                                                 &on_the_way);
+              std::vector<double> t_pieces(count, -1.0), d_pieces(count, -1.0);
+              implementation->formula_newton(formula, normalized.view(shared), kFormulaPathSettings, frame, by_pieces,
+                                             tolerance, count, xy.data(), t_pieces.data(), d_pieces.data(), nullptr);
               std::size_t counted = 0;
               for (std::size_t l = 0; l < count; ++l) {
                 SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " steep " +
                              std::to_string(steep) + (rational ? " rational" : "") + (shared ? " shared" : "") +
                              " lane " + std::to_string(l));
                 EXPECT_TRUE(same_bits(d[l], d_pieces[l])) << "with the floors " << d[l] << ", without " << d_pieces[l];
+                EXPECT_TRUE(same_bits(t[l], t_pieces[l]));
                 EXPECT_TRUE(same_bits(ku[l], u[l]) && same_bits(kv[l], v[l]))
                     << "(" << ku[l] << ", " << kv[l] << ") against (" << u[l] << ", " << v[l] << ")";
-                EXPECT_TRUE(same_bits(t_formula[l], t_formula_ref[l])) << t_formula[l] << " against " << t_formula_ref[l];
-                const bool left = d_ref[l] == std::numeric_limits<double>::infinity();
-                EXPECT_EQ(d[l] == std::numeric_limits<double>::infinity(), left) << d[l] << ", rational_newton " << d_ref[l];
-                if (left) {
-                  ++left_lanes;
-                  EXPECT_TRUE(same_bits(t_ref[l], t_formula_ref[l]));  // rational_newton left t as it was
+                EXPECT_TRUE(same_bits(kt[l], t_formula[l])) << kt[l] << " against " << t_formula[l];
+                if (std::isnan(t[l])) {  // not settled
+                  const bool leaves = t_formula[l] >= 0.0 && t_formula[l] <= 1.0 && d[l] > 1e-150 && d[l] < 1e150 &&
+                                      d[l] > kFormulaPathSettings.leave_distance;
+                  const bool left = d_ref[l] == std::numeric_limits<double>::infinity();
+                  EXPECT_EQ(leaves, left) << "first distance " << d[l] << ", rational_newton's " << d_ref[l];
+                  left_lanes += left;
+                  continue;
                 }
-                if (std::isnan(d[l]) || left) continue;
                 ++counted;
                 EXPECT_TRUE(same_bits(t[l], t_ref[l])) << t[l] << " against " << t_ref[l];
                 EXPECT_TRUE(same_bits(d[l], d_ref[l])) << d[l] << " against " << d_ref[l];
@@ -205,10 +208,10 @@ TEST(FormulaNewton, RefusesDegreesItIsNotCompiledFor) {
   const RationalCurve quartic{4, c.data(), c.data(), c.data(), c.data()};
   const double piece = 1.0;
   const PieceCertificate certificate{1, &piece, 1.0, &piece, &piece, 0.0};
-  double xy[2] = {0.5, 0.5}, u = 0, v = 0, t_formula = 0, t = 0, d = 0;
+  double xy[2] = {0.5, 0.5}, t = 0, d = 0;
   for (const Implementation* implementation : available_implementations())
     EXPECT_THROW(implementation->formula_newton(formula, quartic, kFormulaPathSettings, PointFrame{1, 0, 0, 1, 0},
-                                                certificate, 1e-8, 1, xy, {&u, &v, &t_formula, &t, &d}),
+                                                certificate, 1e-8, 1, xy, &t, &d, nullptr),
                  std::out_of_range);
 }
 

@@ -75,14 +75,20 @@ bool decide_lanes(const PlanData& plan, LaneRows rows, std::size_t count, const 
 }
 
 // Lanes through the stages, but for those left waiting in this thread's queues (rows: consecutive
-// for a batch, gathered for the lanes formula_first leaves). Returns whether it left lanes in the
-// seed retry's queue.
+// for a batch, gathered for the lanes formula_first leaves). from_formula_first: the lanes are
+// lanes formula_first left, w holding their points normalized and N / M, and these of them
+// the lanes whose first Newton iteration it took (FormulaLeft). Returns whether it left lanes in
+// the seed retry's queue.
 bool invert_lanes(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
-                  const InvertOptions& options, StageSeconds* stages, StageClock& clock) {
+                  const InvertOptions& options, StageSeconds* stages, StageClock& clock,
+                  const LaneSet* from_formula_first = nullptr) {
   BatchWorkspace& w = batch_workspace();
   const bool fast = takes_fast_path(plan, options);
   const bool formed_b = forms_b_late(plan, options);
-  form_batch(plan, points, rows, count, /*form=*/plan.degree >= 2 && !formed_b, w);
+  if (from_formula_first)  // (the formula path: no B formed here)
+    admit_batch(plan, points, rows, count, w);
+  else
+    form_batch(plan, points, rows, count, /*form=*/plan.degree >= 2 && !formed_b, w);
   clock.lap(&StageSeconds::form_b);
   if (!fast) {
     if (reports_formula_unrefined(plan, options)) {
@@ -99,22 +105,9 @@ bool invert_lanes(const PlanData& plan, const Point* points, LaneRows rows, std:
       return false;
     }
   }
-  fast_path_seed(plan, points, rows, count, options, w, clock, far);
-  return decide_lanes(plan, rows, count, options, w, clock, !formed_b, stages);
-}
-
-// The lanes formula_first left, in w's lanes 0..count as it left them (u, v, N / M in t_algebraic;
-// lane l's point points[l], its answer to rows[l]), through the rest of the stages: admitted,
-// seeded by N / M (by B where that is NaN), refined (the lanes of newton_left from where
-// formula_first's Newton iteration left them), decided. Returns whether it left lanes in the seed
-// retry's queue.
-bool invert_formula_left(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
-                         LaneSet newton_left, const InvertOptions& options, StageSeconds* stages, StageClock& clock) {
-  BatchWorkspace& w = batch_workspace();
-  admit_batch(plan, points, rows, count, w);
-  clock.lap(&StageSeconds::form_b);
-  fast_path_seed(plan, points, rows, count, options, w, clock, FarLanes{}, /*formula_given=*/true);
-  return decide_lanes(plan, rows, count, options, w, clock, /*b_formed=*/false, stages, newton_left);
+  fast_path_seed(plan, points, rows, count, options, w, clock, far, /*formula_given=*/from_formula_first != nullptr);
+  const LaneSet newton_left = from_formula_first ? formula_first_left(*from_formula_first, count, w) : LaneSet{};
+  return decide_lanes(plan, rows, count, options, w, clock, !formed_b, stages, newton_left);
 }
 
 // formula_first settles nearly every lane of a batch on the curve and none of a batch off it (noise
@@ -146,8 +139,7 @@ bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
     --skip.skip;
     return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock);
   }
-  BatchWorkspace& w = batch_workspace();
-  const FormulaLeft left = formula_first(plan, points, results, count, options, w, clock);
+  const FormulaLeft left = formula_first(plan, points, results, count, options, batch_workspace(), clock);
   if (8 * left.count >= 7 * count) {  // nearly whole (at most one lane in eight settled)
     skip.after = std::min(kFormulaFirstMaxSkip, std::max<std::size_t>(1, 2 * skip.after));
     skip.skip = skip.after;
@@ -156,9 +148,9 @@ bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
   }
   if (left.count == 0) return false;
   if (left.count == count)  // the whole batch, in place
-    return invert_formula_left(plan, points, LaneRows(results), count, left.newton_left, options, stages, clock);
+    return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock, &left.first_iteration_leaves);
   // Part of the batch: its lanes wait for a batch's worth in the stages queue (by_kind.hpp).
-  queue_for_stages(points, results, left, w);
+  queue_for_stages(points, results, left, batch_workspace());
   clock.lap(&StageSeconds::decide);
   return false;
 }
@@ -168,10 +160,10 @@ bool invert_stages_queue(const PlanData& plan, std::size_t m, const InvertOption
   StagesQueue& queue = stages_queue();
   StageClock clock(stages);
   const std::size_t first = queue.size - m;
-  const LaneSet newton_left = take_from_stages_queue(m, batch_workspace());
-  // Their points and rows stay in the queue while they run (invert_formula_left queues none).
-  return invert_formula_left(plan, &queue.point[first], LaneRows(&queue.target[first]), m, newton_left, options,
-                             stages, clock);
+  const LaneSet first_iteration_leaves = take_from_stages_queue(m, batch_workspace());
+  // Their points and rows stay in the queue while they run (invert_lanes queues none).
+  return invert_lanes(plan, &queue.point[first], LaneRows(&queue.target[first]), m, options, stages, clock,
+                      &first_iteration_leaves);
 }
 
 // The first m lanes of the seed queue (by_kind.hpp), as a batch before its seed.

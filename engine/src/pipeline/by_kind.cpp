@@ -30,7 +30,7 @@ void queue_for_stages(const Point* points, PointResult* rows, const FormulaLeft&
     const std::size_t l = left.lane_of[k], q = first + k;
     queue.u[q] = w.u[l], queue.v[q] = w.v[l], queue.t[q] = w.t_algebraic[l];
     queue.point[q] = points[l], queue.target[q] = &rows[l];
-    queue.newton_left[q] = w.distance[l] == std::numeric_limits<double>::infinity();  // newton_left's lanes
+    queue.first_iteration_leaves[q] = left.first_iteration_leaves.has(l);
   }
   queue.size = first + count;
 }
@@ -42,7 +42,7 @@ LaneSet take_from_stages_queue(std::size_t m, BatchWorkspace& w) {
   std::copy_n(&queue.v[first], m, w.v.begin());
   std::copy_n(&queue.t[first], m, w.t_algebraic.begin());
   queue.size = first;
-  return LaneSet::of_bytes(&queue.newton_left[first], m);
+  return LaneSet::of_bytes(&queue.first_iteration_leaves[first], m);
 }
 
 bool sets_far_lanes_aside(const PlanData& plan, const InvertOptions& options) {

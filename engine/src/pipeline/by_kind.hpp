@@ -11,7 +11,7 @@
 //
 // On the formula path, formula_first (formula_first.hpp) sorts a batch the same way: the lanes it
 // settles (on the curve) answer there, and the others go, with what it found for them, to a
-// per-thread stages queue, which goes on through the stages once it holds a batch's worth. In a
+// per-thread stages queue, which goes through the stages once it holds a batch's worth. In a
 // batch of both kinds, the lanes it leaves would otherwise run as a batch part full: every SIMD
 // group and every stage's loop of it run for half the lanes they hold in a batch off the curve.
 #include <array>
@@ -45,13 +45,14 @@ struct FarQueue {
   std::size_t size = 0;
 };
 
-// Lanes formula_first left, waiting for the rest of the stages: the point as given and as
-// normalized, N / M, and whether the first Newton iteration left it (FormulaLeft::newton_left).
+// Lanes formula_first left, waiting for the stages: the point as given and as normalized, N / M,
+// and whether its first Newton iteration leaves it where its start is N / M in [0, 1]
+// (FormulaLeft::first_iteration_leaves).
 struct StagesQueue {
   std::array<double, kSortedQueueLanes> u, v, t;
-  std::array<std::uint8_t, kSortedQueueLanes> newton_left;
   std::array<Point, kSortedQueueLanes> point;
   std::array<PointResult*, kSortedQueueLanes> target;
+  std::array<std::uint8_t, kSortedQueueLanes> first_iteration_leaves;
   std::size_t size = 0;
 };
 
@@ -79,10 +80,10 @@ bool set_aside_far(FarLanes far, const Point* points, LaneRows rows, std::size_t
 // formula_first left it) in the stages queue.
 void queue_for_stages(const Point* points, PointResult* rows, const FormulaLeft& left, const BatchWorkspace& w);
 
-// Puts the stages queue's last m lanes (m <= kBatchLanes) into w's lanes 0..m (u, v, and N / M in
-// t_algebraic), and takes them out of the queue: their points and rows are the queue's, from
-// stages_queue().point[size] and .target[size] on (size as it is then), until lanes are queued
-// again. Returns the lanes the first Newton iteration left.
+// Takes the stages queue's last m lanes (m <= kBatchLanes) out of it into w's lanes 0..m (u, v,
+// and N / M in t_algebraic): their points and rows are the queue's, from stages_queue().point[size]
+// and .target[size] on (size as it is then), until lanes are queued again. Returns their
+// first_iteration_leaves.
 LaneSet take_from_stages_queue(std::size_t m, BatchWorkspace& w);
 
 // Puts the seed queue's first m lanes (m <= kBatchLanes) into w's lanes 0..m as active lanes, their

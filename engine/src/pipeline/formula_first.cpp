@@ -31,27 +31,40 @@ kernels::PointFrame point_frame(const PlanData& plan) {
           .sin = plan.sin_rotation};
 }
 
-// w.u, w.v, w.t_algebraic, w.t_refined and w.distance of every lane, distance NaN where the lane
-// is not answered here (+inf where the first Newton iteration leaves it): by the formula_newton
-// kernel for a conic or a cubic, else by the kernels it fuses, one after the other (the formula
-// path of a curve's own formula, degree 4 and up: its N / M and the Newton iterations cost more
-// than the passes between them).
-void settle_lanes(const PlanData& plan, const Point* points, std::size_t count, double tolerance, BatchWorkspace& w,
-                  StageClock& clock) {
+// w.u, w.v (the point normalized), w.t_algebraic (N / M), w.t_refined and w.distance of every
+// lane, t_refined NaN where the lane is not answered here, and in `leaves` the lanes
+// rational_newton's first iteration leaves if their start is N / M in [0, 1] (FormulaLeft): by the
+// formula_newton kernel for a conic or a cubic, else by the kernels it
+// fuses, one after the other (the formula path of a curve's own formula, degree 4 and up: its
+// N / M and the Newton iterations cost more than the passes between them). Returns how many lanes
+// it answers.
+std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t count, double tolerance,
+                         BatchWorkspace& w, StageClock& clock, LaneSet& leaves) {
   const kernels::Implementation& kernel = kernels::active_implementation();
   const kernels::PlaneFormula formula = plane_formula(fast_path_formula(plan));
   const kernels::NewtonSettings settings = on_curve_newton_settings(/*formula=*/true);
   if (plan.degree >= kernels::kFormulaNewtonMinDegree && plan.degree <= kernels::kFormulaNewtonMaxDegree) {
     static_assert(sizeof(Point) == 2 * sizeof(double));
-    kernel.formula_newton(formula, kernel_curve(plan), settings, point_frame(plan),
-                          far_boxes_certificate(plan, tolerance), tolerance, count, &points[0].x,
-                          {.u = w.u.data(),
-                           .v = w.v.data(),
-                           .t_formula = w.t_algebraic.data(),
-                           .t = w.t_refined.data(),
-                           .distance = w.distance.data()});
+    const kernels::FormulaStart on_the_way{w.u.data(), w.v.data(), w.t_algebraic.data()};
+    const std::size_t settled =
+        kernel.formula_newton(formula, kernel_curve(plan), settings, point_frame(plan),
+                              far_boxes_certificate(plan, tolerance), tolerance, count, &points[0].x,
+                              w.t_refined.data(), w.distance.data(), &on_the_way);
     clock.lap(&StageSeconds::kernel);
-    return;
+    if (settled == count) return settled;
+    // A lane not settled has its first distance h: rational_newton keeps it past its first test
+    // where 1e-150 < h < 1e150 (the range where its length() is the plain square root), and then
+    // leaves it where h is beyond the leave distance (kernels::Implementation::formula_newton).
+    for (std::size_t i = 0; 64 * i < count; ++i) {
+      std::uint64_t word = 0;
+      for (std::size_t l = 64 * i; l < std::min(count, 64 * (i + 1)); ++l) {
+        const double h = w.distance[l];
+        const bool beyond = std::isnan(w.t_refined[l]) && h > settings.leave_distance && h > 1e-150 && h < 1e150;
+        word |= std::uint64_t{beyond} << (l % 64);
+      }
+      leaves.set_word(i, word);
+    }
+    return settled;
   }
   normalize_batch(plan, points, count, w);
   clock.lap(&StageSeconds::form_b);
@@ -65,9 +78,18 @@ void settle_lanes(const PlanData& plan, const Point* points, std::size_t count, 
                          w.distance.data());
   clock.lap(&StageSeconds::refine);
   isolated_by_far_boxes(plan, w.t_refined.data(), w.distance.data(), tolerance, count, w.certified.data());
-  constexpr double kLeft = std::numeric_limits<double>::infinity();  // left by the first iteration
-  for (std::size_t l = 0; l < count; ++l)
-    if (!(w.certified[l] && w.distance[l] <= tolerance) && w.distance[l] != kLeft) w.distance[l] = PointResult::nan;
+  std::size_t settled = 0;
+  for (std::size_t i = 0; 64 * i < count; ++i) {
+    std::uint64_t word = 0;
+    for (std::size_t l = 64 * i; l < std::min(count, 64 * (i + 1)); ++l) {
+      const bool answered = w.certified[l] && w.distance[l] <= tolerance;
+      settled += answered;
+      word |= std::uint64_t{w.distance[l] == std::numeric_limits<double>::infinity()} << (l % 64);  // left
+      if (!answered) w.t_refined[l] = PointResult::nan;
+    }
+    leaves.set_word(i, word);
+  }
+  return settled;
 }
 
 }  // namespace
@@ -75,34 +97,48 @@ void settle_lanes(const PlanData& plan, const Point* points, std::size_t count, 
 FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                           const InvertOptions& options, BatchWorkspace& w, StageClock& clock) {
   const double tolerance = normalized_tolerance(plan, options);
-  settle_lanes(plan, points, count, tolerance, w, clock);
-  // The lanes it leaves (NaN or +inf) and those it settles, without a branch per lane: in a batch
-  // of both kinds, on the curve and off it, that branch would be mispredicted at every change.
   FormulaLeft left;
-  LaneSet settled;
-  std::size_t m = 0;
-  for (std::size_t i = 0; 64 * i < count; ++i) {
-    std::uint64_t settled_word = 0, newton_word = 0;  // in registers, stored once
-    const std::size_t end = std::min(count, 64 * (i + 1));
-    for (std::size_t l = 64 * i; l < end; ++l) {
-      const double distance = w.distance[l];
-      const bool leaves = !(distance <= tolerance);
-      left.lane_of[m] = static_cast<std::uint8_t>(l);  // kept where it leaves
-      m += leaves;
-      settled_word |= std::uint64_t{!leaves} << (l % 64);
-      newton_word |= std::uint64_t{distance == std::numeric_limits<double>::infinity()} << (l % 64);
-    }
-    settled.set_word(i, settled_word);
-    left.newton_left.set_word(i, newton_word);
-  }
-  left.count = m;
-  settled.for_each([&](std::size_t l) {
+  const std::size_t settled_count = settle_lanes(plan, points, count, tolerance, w, clock, left.first_iteration_leaves);
+  auto answer = [&](std::size_t l) {
     PointResult& r = results[l];
     r = PointResult{};
     answer_fast(plan, w.t_refined[l], w.distance[l], PointResult::nan, PointResult::nan, r, Path::formula);
-  });
+  };
+  // A batch on the curve, every lane settled: one loop.
+  if (settled_count == count) {
+    for (std::size_t l = 0; l < count; ++l) answer(l);
+    clock.lap(&StageSeconds::decide);
+    return left;
+  }
+  // Else the lanes it settles and those it leaves as bits, without a branch per lane: in a batch of
+  // both kinds that branch would be mispredicted at every change of kind.
+  LaneSet settled, leaves;
+  for (std::size_t i = 0; 64 * i < count; ++i) {
+    std::uint64_t word = 0;  // in a register, stored once
+    const std::size_t end = std::min(count, 64 * (i + 1));
+    for (std::size_t l = 64 * i; l < end; ++l) word |= std::uint64_t{!std::isnan(w.t_refined[l])} << (l % 64);
+    const std::uint64_t lanes = end - 64 * i == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << (end - 64 * i)) - 1;
+    settled.set_word(i, word);
+    leaves.set_word(i, lanes & ~word);
+  }
+  settled.for_each(answer);
+  leaves.for_each([&](std::size_t l) { left.lane_of[left.count++] = static_cast<std::uint8_t>(l); });
   clock.lap(&StageSeconds::decide);
   return left;
+}
+
+LaneSet formula_first_left(LaneSet first_iteration_leaves, std::size_t count, const BatchWorkspace& w) {
+  LaneSet left;
+  if (first_iteration_leaves.empty()) return left;
+  for (std::size_t i = 0; 64 * i < count; ++i) {
+    std::uint64_t word = 0;
+    for (std::size_t l = 64 * i; l < std::min(count, 64 * (i + 1)); ++l) {
+      const double t = w.t_algebraic[l];
+      word |= std::uint64_t{w.active[l] && w.from_formula[l] && t >= 0.0 && t <= 1.0} << (l % 64);
+    }
+    left.set_word(i, word);
+  }
+  return left.both(first_iteration_leaves);
 }
 
 }  // namespace bezinv::detail

@@ -9,11 +9,11 @@
 // (for a conic or a cubic all in one kernel, formula_newton, which settles the lanes the first
 // Newton iteration settles), and its row written once. Those are the very operations the stages
 // make for such a lane, so its row has the same bits as theirs. Every other lane (a non-finite
-// point, a base point near, off the curve, not certified) goes on through the stages, from what
-// formula_first computed for it (its point normalized, N / M, and whether the first Newton
-// iteration leaves it to the off-curve kernels): the stages take up each such lane where the same
-// steps would have brought it, so it costs about what it would in a batch that skipped
-// formula_first. A lane's answer depends on its point alone, not on its batch.
+// point, a base point near, off the curve, not certified) goes on through the stages, which are
+// given what formula_first computed for them (the point normalized, N / M) and told the lanes
+// whose first Newton iteration it took and which that left to the off-curve kernels (off the
+// curve by more than the leave distance, most lanes it leaves): they take none of those steps
+// again. A lane's answer depends on its point alone, not on its batch.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -32,19 +32,25 @@ bool takes_formula_first(const PlanData& plan, const InvertOptions& options);
 struct FormulaLeft {
   std::size_t count = 0;                          // how many
   std::array<std::uint8_t, kBatchLanes> lane_of;  // which, lane_of[0..count), in order
-  // Of the batch's lanes, those rational_newton's first iteration leaves to the off-curve kernels
-  // (their first distance beyond the formula path's leave distance; w.distance +inf).
-  LaneSet newton_left;
+  // Of the batch's lanes, those that rational_newton's first iteration leaves to the off-curve
+  // kernels (first distance beyond the formula path's leave distance) where their start is N / M
+  // in [0, 1]: which the stages tell (formula_first_left).
+  LaneSet first_iteration_leaves;
 };
 
 // Answers the lanes of points[0..count) it settles (each row written whole: ok, path formula,
 // sigma columns NaN, as the stages' first pass answers them); their rows are untouched otherwise.
-// For every lane, settled or not, it leaves in w the point normalized (u, v) and N / M
-// (t_algebraic: NaN where the formula is not used), the bits form_batch and formula_or_seed would
-// give; w.distance is +inf in the lanes of newton_left. Uses w's t_refined and certified too. Its
-// stages go to the clock as the stages' would: normalizing to form_b, N / M to kernel, Newton to
-// refine, the certificate and the rows to decide.
+// For every lane it leaves in w the point normalized (u, v) and N / M (t_algebraic: NaN where the
+// formula is not used), the bits form_batch and formula_or_seed would give, so that the stages
+// need not compute them again. Uses w's t_refined, distance and certified too. Its stages go to the clock as
+// the stages' would: normalizing to form_b, N / M to kernel, Newton to refine, the certificate and
+// the rows to decide.
 FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
                           const InvertOptions& options, BatchWorkspace& w, StageClock& clock);
+
+// The lanes of a batch formula_first left (their starts told by fast_path_seed since) that
+// rational_newton's first iteration leaves: those of `first_iteration_leaves` given t by the
+// formula in [0, 1].
+LaneSet formula_first_left(LaneSet first_iteration_leaves, std::size_t count, const BatchWorkspace& w);
 
 }  // namespace bezinv::detail

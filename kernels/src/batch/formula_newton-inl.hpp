@@ -39,7 +39,8 @@ HWY_INLINE std::size_t formula_newton_group(D d, const PlaneFormula& formula, co
                                             const NewtonSettings& settings, const PointFrame& frame,
                                             const PieceCertificate& certificate, double tolerance,
                                             std::size_t first, std::size_t lanes, const double* HWY_RESTRICT xy,
-                                            const FormulaNewtonOut& out) {
+                                            double* HWY_RESTRICT t_out, double* HWY_RESTRICT distance_out,
+                                            const FormulaStart* on_the_way) {
   namespace hw = hwy::HWY_NAMESPACE;
   using DN = typename D::D;
   using V = hn::Vec<D>;
@@ -67,6 +68,11 @@ HWY_INLINE std::size_t formula_newton_group(D d, const PlaneFormula& formula, co
     }
   }
   formula_parameter_groups<D::kVectors>(dn, formula, u, v, t0);
+  if (on_the_way != nullptr) {  // now, from the arrays: kept in registers for later, they would spill others
+    hn::StoreGroup(hn::Load(d, u), d, on_the_way->u, first, lanes);
+    hn::StoreGroup(hn::Load(d, v), d, on_the_way->v, first, lanes);
+    hn::StoreGroup(hn::Load(d, t0), d, on_the_way->t, first, lanes);
+  }
 
   // rational_newton_group's first iteration, for the lanes it settles there (its last step, or a
   // step that converged where t's last ulps do not move P), kLeaving included: a lane whose first
@@ -84,10 +90,6 @@ HWY_INLINE std::size_t formula_newton_group(D d, const PlaneFormula& formula, co
   const M converged = hn::AndNot(taken.fast, taken.converged);
   const V distance = hn::IfThenElse(last, taken.updated, jet.h);
   M settled = hn::And(hn::Or(last, converged), hn::Le(distance, hn::Set(d, tolerance)));
-  // The lanes rational_newton's first iteration leaves (kLeaving): active (t in [0, 1]), their
-  // first distance finite, as length() computes it, and above the leave distance.
-  const M left = hn::And(hn::And(inside, hn::And(jet.plain, hn::IsFinite(jet.h))),
-                         hn::Gt(jet.h, hn::Set(d, settings.leave_distance)));
 
   // The isolation certificate's first test (the engine's isolated_by_far_boxes): by its floors,
   // and for the lanes they do not pass, by the bounds of their piece (gathers; a lane not settled
@@ -111,27 +113,25 @@ HWY_INLINE std::size_t formula_newton_group(D d, const PlaneFormula& formula, co
     }
     count += hw::CountTrue(dn, settled.m[g]);
   }
-  hn::StoreGroup(uw, d, out.u, first, lanes);
-  hn::StoreGroup(vw, d, out.v, first, lanes);
-  hn::StoreGroup(t, d, out.t_formula, first, lanes);
-  hn::StoreGroup(taken.next, d, out.t, first, lanes);
-  const V not_settled = hn::IfThenElse(left, hn::Set(d, std::numeric_limits<double>::infinity()),
-                                       hn::Set(d, std::numeric_limits<double>::quiet_NaN()));
-  hn::StoreGroup(hn::IfThenElse(settled, distance, not_settled), d, out.distance, first, lanes);
+  // A lane not settled: t NaN, and its first distance, from which the caller tells whether
+  // rational_newton's first iteration leaves it (so as not to run that iteration again).
+  hn::StoreGroup(hn::IfThenElse(settled, taken.next, hn::Set(d, std::numeric_limits<double>::quiet_NaN())), d, t_out,
+                 first, lanes);
+  hn::StoreGroup(hn::IfThenElse(settled, distance, jet.h), d, distance_out, first, lanes);
   return count;
 }
 
 std::size_t formula_newton_batch(const PlaneFormula& formula, const RationalCurve& curve,
                                  const NewtonSettings& settings, const PointFrame& frame,
                                  const PieceCertificate& certificate, double tolerance, std::size_t count,
-                                 const double* xy, const FormulaNewtonOut& out) {
+                                 const double* xy, double* t, double* distance, const FormulaStart* start) {
   check_size<kFormulaParameterMinDegree, kFormulaParameterMaxDegree>("formula_newton's formula", formula.degree);
   std::size_t settled = 0;
   dispatch_size<kFormulaNewtonMinDegree, kFormulaNewtonMaxDegree>("formula_newton", curve.degree, [&](auto size) {
     constexpr int N = decltype(size)::value;
     wide::ForEachGroup<kNewtonWideVectors<N>>(count, [&](auto group, std::size_t first, std::size_t lanes) {
       settled += formula_newton_group<N>(group, formula, curve, settings, frame, certificate, tolerance, first, lanes,
-                                         xy, out);
+                                         xy, t, distance, start);
     });
   });
   return settled;

@@ -42,7 +42,8 @@ using FormulaParameterKernel = void (*)(const PlaneFormula& formula, std::size_t
 using FormulaNewtonKernel = std::size_t (*)(const PlaneFormula& formula, const RationalCurve& curve,
                                             const NewtonSettings& settings, const PointFrame& frame,
                                             const PieceCertificate& certificate, double tolerance, std::size_t count,
-                                            const double* xy, const FormulaNewtonOut& out);
+                                            const double* xy, double* t, double* distance,
+                                            const FormulaStart* start);
 
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);

@@ -131,18 +131,13 @@ struct PointFrame {
   double scale, centre_x, centre_y, cos, sin;
 };
 
-// What formula_newton leaves in lane l < count of each array (count long): the steps it took, so
-// that the caller need not take them again for a lane it does not settle.
-struct FormulaNewtonOut {
-  double* u;          // the point normalized by the frame (PointFrame)
+// Where formula_newton puts what it computes on the way, for every lane l < count (arrays count
+// long): the point normalized by the frame (u, v) and N / M (t, as formula_parameter gives it,
+// NaN where the formula is not used), so that a caller who takes a lane further need not again.
+struct FormulaStart {
+  double* u;
   double* v;
-  double* t_formula;  // N / M, as formula_parameter gives it (NaN where the formula is not used)
-  double* t;          // a settled lane's t (meaningless in the others)
-  // A settled lane's distance (at most the tolerance); +inf where rational_newton's first
-  // iteration leaves the lane (t_formula in [0, 1], its first distance above
-  // settings.leave_distance: rational_newton gives it that distance and leaves t_formula as it is);
-  // NaN in every other lane.
-  double* distance;
+  double* t;
 };
 
 // The isolation certificate's first test as formula_newton makes it (the engine's
@@ -332,13 +327,19 @@ struct Implementation {
   // rational_newton's first iteration from that t with `settings` (settings.leave_distance
   // included). Where that iteration settles the lane (its last step, or a step that converged where
   // t's last ulps do not move P), at a distance of at most `tolerance` that `certificate` passes:
-  // t and distance as formula_parameter then rational_newton give them, bit for bit. The others are
-  // the caller's to take the long way, from what out says of them (FormulaNewtonOut). Returns the
-  // number of lanes settled. curve.degree in [kFormulaNewtonMinDegree, kFormulaNewtonMaxDegree],
-  // formula.degree in formula_parameter's range.
+  // t[l] and distance[l] as formula_parameter then rational_newton give them, bit for bit. Every
+  // other lane gets t[l] = NaN, and distance[l] = the first iteration's distance h = |P(t0) - P0|,
+  // t0 = N / M clamped to [0, 1] (as the kernel's length computes it: NaN or inf where not finite):
+  // the caller takes the lane the long way, and where t0 = N / M is in [0, 1] and
+  // 1e-150 < h < 1e150 (length()'s own range: there rational_newton's first test keeps the lane),
+  // h above settings.leave_distance tells that rational_newton's first iteration leaves it.
+  // With `start` (else null), each lane's normalized point and N / M too (FormulaStart).
+  // Returns the number of lanes settled. curve.degree in [kFormulaNewtonMinDegree,
+  // kFormulaNewtonMaxDegree], formula.degree in formula_parameter's range.
   std::size_t (*formula_newton)(const PlaneFormula& formula, const RationalCurve& curve, const NewtonSettings& settings,
                                 const PointFrame& frame, const PieceCertificate& certificate, double tolerance,
-                                std::size_t count, const double* xy, const FormulaNewtonOut& out);
+                                std::size_t count, const double* xy, double* t, double* distance,
+                                const FormulaStart* start);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the
