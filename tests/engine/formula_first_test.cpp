@@ -25,10 +25,12 @@
 #include "bezinv/invert.hpp"
 #include "bezinv/plan.hpp"
 #include "pipeline/batch.hpp"
+#include "pipeline/by_kind.hpp"
 #include "pipeline/formula_path.hpp"
 #include "pipeline/stage_clock.hpp"
 #include "pipeline/workspace.hpp"
 #include "plan_data.hpp"
+#include "support/bits.hpp"
 #include "support/same_row.hpp"
 #include "support/sanitizers.hpp"
 
@@ -253,6 +255,59 @@ TEST(FormulaFirst, LanesItLeavesGoOnFromWhereItLeftThem) {
       }
   EXPECT_GT(whole, 0u);
   EXPECT_GT(newton_left, whole * detail::kBatchLanes / 2);
+}
+
+// Where formula_first does not keep each lane's point normalized and N / M (after a batch it
+// settled whole), the lanes it leaves reach the stages queue with the same values, computed there,
+// bit for bit: against the values it keeps, for batches of both kinds on conics and cubics.
+TEST(FormulaFirst, NotKeptTheStartsAreComputedTheSame) {
+  std::mt19937_64 rng(20261210);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), exponent(-8.0, -2.0);
+  std::size_t compared = 0;
+  for (int n : {2, 3})
+    for (int c = 0; c < 6; ++c) {
+      const Curve curve =
+          datasets::random_curve(CurveKind::rational_bezier, n, rng, datasets::ControlPolygon::perturbed_arc);
+      const InversionPlan plan = make_plan(curve);
+      const detail::PlanData& data = detail::plan_data(plan);
+      if (!detail::takes_formula_first(data, {})) continue;
+      std::vector<Point> points;
+      for (std::size_t k = 0; k < detail::kBatchLanes; ++k) {
+        Point p = datasets::on_curve(curve, unit(rng));
+        const double d = k % 3 ? 0.0 : std::pow(10.0, exponent(rng)) * plan.diagonal();
+        points.push_back({p.x + d, p.y - d});
+      }
+      points[5] = {kNaN, 0.0};
+      std::array<PointResult, detail::kBatchLanes> scratch;
+      detail::StageClock clock(nullptr);
+      detail::BatchWorkspace& w = detail::batch_workspace();
+      const detail::QueueScope scope;
+      const detail::FormulaLeft kept =
+          detail::formula_first(data, points.data(), scratch.data(), points.size(), {}, w, clock, /*keep=*/true);
+      ASSERT_TRUE(kept.given);
+      std::vector<double> u, v, t;
+      for (std::size_t k = 0; k < kept.count; ++k) {
+        const std::size_t l = kept.lane_of[k];
+        u.push_back(w.u[l]), v.push_back(w.v[l]), t.push_back(w.t_algebraic[l]);
+      }
+      const detail::FormulaLeft not_kept =
+          detail::formula_first(data, points.data(), scratch.data(), points.size(), {}, w, clock, /*keep=*/false);
+      ASSERT_FALSE(not_kept.given);
+      ASSERT_EQ(not_kept.count, kept.count);
+      detail::StagesQueue& queue = detail::stages_queue();
+      queue.size = 0;
+      detail::queue_for_stages(data, points.data(), scratch.data(), not_kept, w);
+      ASSERT_EQ(queue.size, kept.count);
+      for (std::size_t k = 0; k < kept.count; ++k) {
+        EXPECT_TRUE(test_support::same_bits(queue.u[k], u[k]) && test_support::same_bits(queue.v[k], v[k]) &&
+                    test_support::same_bits(queue.t[k], t[k]))
+            << "degree " << n << " curve " << c << " lane " << int(kept.lane_of[k]);
+        EXPECT_EQ(queue.first_iteration_leaves[k] != 0, kept.first_iteration_leaves.has(kept.lane_of[k]));
+        ++compared;
+      }
+      queue.size = 0;
+    }
+  EXPECT_GT(compared, 100u);
 }
 
 }  // namespace

@@ -76,16 +76,16 @@ bool decide_lanes(const PlanData& plan, LaneRows rows, std::size_t count, const 
 
 // Lanes through the stages, but for those left waiting in this thread's queues (rows: consecutive
 // for a batch, gathered for the lanes formula_first leaves). from_formula_first: the lanes are
-// lanes formula_first left, w holding their points normalized and N / M, and these of them
-// the lanes whose first Newton iteration it took (FormulaLeft). Returns whether it left lanes in
-// the seed retry's queue.
+// lanes formula_first left, these of them the lanes whose first Newton iteration it took
+// (FormulaLeft); given: w holds their points normalized and N / M. Returns whether it left lanes
+// in the seed retry's queue.
 bool invert_lanes(const PlanData& plan, const Point* points, LaneRows rows, std::size_t count,
                   const InvertOptions& options, StageSeconds* stages, StageClock& clock,
-                  const LaneSet* from_formula_first = nullptr) {
+                  const LaneSet* from_formula_first = nullptr, bool given = false) {
   BatchWorkspace& w = batch_workspace();
   const bool fast = takes_fast_path(plan, options);
   const bool formed_b = forms_b_late(plan, options);
-  if (from_formula_first)  // (the formula path: no B formed here)
+  if (given)  // (the formula path: no B formed here)
     admit_batch(plan, points, rows, count, w);
   else
     form_batch(plan, points, rows, count, /*form=*/plan.degree >= 2 && !formed_b, w);
@@ -105,7 +105,7 @@ bool invert_lanes(const PlanData& plan, const Point* points, LaneRows rows, std:
       return false;
     }
   }
-  fast_path_seed(plan, points, rows, count, options, w, clock, far, /*formula_given=*/from_formula_first != nullptr);
+  fast_path_seed(plan, points, rows, count, options, w, clock, far, /*formula_given=*/given);
   const LaneSet newton_left = from_formula_first ? formula_first_left(*from_formula_first, count, w) : LaneSet{};
   return decide_lanes(plan, rows, count, options, w, clock, !formed_b, stages, newton_left);
 }
@@ -116,9 +116,13 @@ bool invert_lanes(const PlanData& plan, const Point* points, LaneRows rows, std:
 // many each time it is left so again (at most kFormulaFirstMaxSkip), and tries once more: on a file
 // off the curve it runs on about one batch in 16, and one good batch brings it back. Which batches
 // take it changes no row (each lane it answers gets the stages' row, bit for bit): speed only.
+// And where it settled every lane of the thread's batch before, as it does a batch after batch on
+// the curve, it does not keep what it computed on the way for the lanes it leaves (FormulaLeft):
+// a few stores a lane, which a file on the curve would not use.
 struct FormulaFirstSkip {
-  std::size_t skip = 0;   // batches still to skip
-  std::size_t after = 0;  // how many to skip after the next batch it leaves nearly whole
+  std::size_t skip = 0;     // batches still to skip
+  std::size_t after = 0;    // how many to skip after the next batch it leaves nearly whole
+  bool settled_all = false;  // it settled every lane of the batch before
 };
 inline constexpr std::size_t kFormulaFirstMaxSkip = 16;
 
@@ -139,7 +143,9 @@ bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
     --skip.skip;
     return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock);
   }
-  const FormulaLeft left = formula_first(plan, points, results, count, options, batch_workspace(), clock);
+  const FormulaLeft left =
+      formula_first(plan, points, results, count, options, batch_workspace(), clock, /*keep=*/!skip.settled_all);
+  skip.settled_all = left.count == 0;
   if (8 * left.count >= 7 * count) {  // nearly whole (at most one lane in eight settled)
     skip.after = std::min(kFormulaFirstMaxSkip, std::max<std::size_t>(1, 2 * skip.after));
     skip.skip = skip.after;
@@ -148,9 +154,10 @@ bool invert_batch_lanes(const PlanData& plan, const Point* points, PointResult* 
   }
   if (left.count == 0) return false;
   if (left.count == count)  // the whole batch, in place
-    return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock, &left.first_iteration_leaves);
+    return invert_lanes(plan, points, LaneRows(results), count, options, stages, clock, &left.first_iteration_leaves,
+                        left.given);
   // Part of the batch: its lanes wait for a batch's worth in the stages queue (by_kind.hpp).
-  queue_for_stages(points, results, left, batch_workspace());
+  queue_for_stages(plan, points, results, left, batch_workspace());
   clock.lap(&StageSeconds::decide);
   return false;
 }
@@ -163,7 +170,7 @@ bool invert_stages_queue(const PlanData& plan, std::size_t m, const InvertOption
   const LaneSet first_iteration_leaves = take_from_stages_queue(m, batch_workspace());
   // Their points and rows stay in the queue while they run (invert_lanes queues none).
   return invert_lanes(plan, &queue.point[first], LaneRows(&queue.target[first]), m, options, stages, clock,
-                      &first_iteration_leaves);
+                      &first_iteration_leaves, /*given=*/true);
 }
 
 // The first m lanes of the seed queue (by_kind.hpp), as a batch before its seed.

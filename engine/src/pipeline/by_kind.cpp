@@ -23,12 +23,18 @@ StagesQueue& stages_queue() {
   return queue;
 }
 
-void queue_for_stages(const Point* points, PointResult* rows, const FormulaLeft& left, const BatchWorkspace& w) {
+void queue_for_stages(const PlanData& plan, const Point* points, PointResult* rows, const FormulaLeft& left,
+                      const BatchWorkspace& w) {
   StagesQueue& queue = stages_queue();
   const std::size_t first = queue.size, count = left.count;
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t l = left.lane_of[k], q = first + k;
-    queue.u[q] = w.u[l], queue.v[q] = w.v[l], queue.t[q] = w.t_algebraic[l];
+    if (left.given) {
+      queue.u[q] = w.u[l], queue.v[q] = w.v[l], queue.t[q] = w.t_algebraic[l];
+    } else {  // (a lane or two of a batch on the curve, mostly)
+      const auto uv = plan.normalize(points[l].x, points[l].y);
+      queue.u[q] = uv[0], queue.v[q] = uv[1], queue.t[q] = formula_parameter(fast_path_formula(plan), uv[0], uv[1]);
+    }
     queue.point[q] = points[l], queue.target[q] = &rows[l];
     queue.first_iteration_leaves[q] = left.first_iteration_leaves.has(l);
   }

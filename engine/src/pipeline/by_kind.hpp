@@ -77,8 +77,10 @@ bool set_aside_far(FarLanes far, const Point* points, LaneRows rows, std::size_t
                    const BatchWorkspace& w);
 
 // Puts the lanes formula_first left of a batch (its points, consecutive rows, and w as
-// formula_first left it) in the stages queue.
-void queue_for_stages(const Point* points, PointResult* rows, const FormulaLeft& left, const BatchWorkspace& w);
+// formula_first left it) in the stages queue; where it did not keep their points normalized and
+// N / M (left.given), computes them (PlanData::normalize and formula_parameter: the same bits).
+void queue_for_stages(const PlanData& plan, const Point* points, PointResult* rows, const FormulaLeft& left,
+                      const BatchWorkspace& w);
 
 // Takes the stages queue's last m lanes (m <= kBatchLanes) out of it into w's lanes 0..m (u, v,
 // and N / M in t_algebraic): their points and rows are the queue's, from stages_queue().point[size]

@@ -39,7 +39,7 @@ kernels::PointFrame point_frame(const PlanData& plan) {
 // N / M and the Newton iterations cost more than the passes between them). Returns how many lanes
 // it answers.
 std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t count, double tolerance,
-                         BatchWorkspace& w, StageClock& clock, LaneSet& leaves) {
+                         BatchWorkspace& w, StageClock& clock, LaneSet& leaves, bool& given, bool keep) {
   const kernels::Implementation& kernel = kernels::active_implementation();
   const kernels::PlaneFormula formula = plane_formula(fast_path_formula(plan));
   const kernels::NewtonSettings settings = on_curve_newton_settings(/*formula=*/true);
@@ -49,7 +49,8 @@ std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t 
     const std::size_t settled =
         kernel.formula_newton(formula, kernel_curve(plan), settings, point_frame(plan),
                               far_boxes_certificate(plan, tolerance), tolerance, count, &points[0].x,
-                              w.t_refined.data(), w.distance.data(), &on_the_way);
+                              w.t_refined.data(), w.distance.data(), keep ? &on_the_way : nullptr);
+    given = keep;
     clock.lap(&StageSeconds::kernel);
     if (settled == count) return settled;
     // A lane not settled has its first distance h: rational_newton keeps it past its first test
@@ -67,6 +68,7 @@ std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t 
     return settled;
   }
   normalize_batch(plan, points, count, w);
+  given = true;
   clock.lap(&StageSeconds::form_b);
   // N / M is NaN where a coordinate is not finite (so a lane admit() would refuse never gets a
   // t), near a base point and far out; the Newton kernel leaves a NaN t (and a t off [0, 1])
@@ -95,10 +97,11 @@ std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t 
 }  // namespace
 
 FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
-                          const InvertOptions& options, BatchWorkspace& w, StageClock& clock) {
+                          const InvertOptions& options, BatchWorkspace& w, StageClock& clock, bool keep) {
   const double tolerance = normalized_tolerance(plan, options);
   FormulaLeft left;
-  const std::size_t settled_count = settle_lanes(plan, points, count, tolerance, w, clock, left.first_iteration_leaves);
+  const std::size_t settled_count =
+      settle_lanes(plan, points, count, tolerance, w, clock, left.first_iteration_leaves, left.given, keep);
   auto answer = [&](std::size_t l) {
     PointResult& r = results[l];
     r = PointResult{};

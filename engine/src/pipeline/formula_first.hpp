@@ -36,17 +36,20 @@ struct FormulaLeft {
   // kernels (first distance beyond the formula path's leave distance) where their start is N / M
   // in [0, 1]: which the stages tell (formula_first_left).
   LaneSet first_iteration_leaves;
+  // Whether w holds every lane's point normalized (u, v) and N / M (t_algebraic).
+  bool given = false;
 };
 
 // Answers the lanes of points[0..count) it settles (each row written whole: ok, path formula,
 // sigma columns NaN, as the stages' first pass answers them); their rows are untouched otherwise.
-// For every lane it leaves in w the point normalized (u, v) and N / M (t_algebraic: NaN where the
-// formula is not used), the bits form_batch and formula_or_seed would give, so that the stages
-// need not compute them again. Uses w's t_refined, distance and certified too. Its stages go to the clock as
+// With `keep` (and always from degree 4), for every lane it leaves in w the point normalized (u, v)
+// and N / M (t_algebraic: NaN where the formula is not used), the bits form_batch and
+// formula_or_seed would give, so that the stages need not compute them again (FormulaLeft::given).
+// Uses w's t_refined, distance and certified too. Its stages go to the clock as
 // the stages' would: normalizing to form_b, N / M to kernel, Newton to refine, the certificate and
 // the rows to decide.
 FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult* results, std::size_t count,
-                          const InvertOptions& options, BatchWorkspace& w, StageClock& clock);
+                          const InvertOptions& options, BatchWorkspace& w, StageClock& clock, bool keep = true);
 
 // The lanes of a batch formula_first left (their starts told by fast_path_seed since) that
 // rational_newton's first iteration leaves: those of `first_iteration_leaves` given t by the
