@@ -48,7 +48,8 @@ LaneSet take_from_stages_queue(std::size_t m, BatchWorkspace& w) {
   std::copy_n(&queue.v[first], m, w.v.begin());
   std::copy_n(&queue.t[first], m, w.t_algebraic.begin());
   queue.size = first;
-  return LaneSet::of_bytes(&queue.first_iteration_leaves[first], m);
+  const std::uint8_t* leaves = &queue.first_iteration_leaves[first];
+  return LaneSet::where(m, [&](std::size_t k) { return leaves[k] != 0; });
 }
 
 bool sets_far_lanes_aside(const PlanData& plan, const InvertOptions& options) {

@@ -31,44 +31,41 @@ kernels::PointFrame point_frame(const PlanData& plan) {
           .sin = plan.sin_rotation};
 }
 
+// Whether a conic's or cubic's formula path, all in the formula_newton kernel.
+bool fused(const PlanData& plan) {
+  return plan.degree >= kernels::kFormulaNewtonMinDegree && plan.degree <= kernels::kFormulaNewtonMaxDegree;
+}
+
 // w.u, w.v (the point normalized), w.t_algebraic (N / M), w.t_refined and w.distance of every
-// lane, t_refined NaN where the lane is not answered here, and in `leaves` the lanes
-// rational_newton's first iteration leaves if their start is N / M in [0, 1] (FormulaLeft): by the
-// formula_newton kernel for a conic or a cubic, else by the kernels it
-// fuses, one after the other (the formula path of a curve's own formula, degree 4 and up: its
+// lane (u, v and N / M only with `keep` where fused), t_refined NaN where the lane is not answered
+// here, and in `leaves` the lanes rational_newton's first iteration leaves if their start is N / M
+// in [0, 1] (FormulaLeft): by the formula_newton kernel for a conic or a cubic, else by the kernels
+// it fuses, one after the other (the formula path of a curve's own formula, degree 4 and up: its
 // N / M and the Newton iterations cost more than the passes between them). Returns how many lanes
 // it answers.
 std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t count, double tolerance,
-                         BatchWorkspace& w, StageClock& clock, LaneSet& leaves, bool& given, bool keep) {
+                         BatchWorkspace& w, StageClock& clock, LaneSet& leaves, bool keep) {
   const kernels::Implementation& kernel = kernels::active_implementation();
   const kernels::PlaneFormula formula = plane_formula(fast_path_formula(plan));
   const kernels::NewtonSettings settings = on_curve_newton_settings(/*formula=*/true);
-  if (plan.degree >= kernels::kFormulaNewtonMinDegree && plan.degree <= kernels::kFormulaNewtonMaxDegree) {
+  if (fused(plan)) {
     static_assert(sizeof(Point) == 2 * sizeof(double));
     const kernels::FormulaStart on_the_way{w.u.data(), w.v.data(), w.t_algebraic.data()};
-    const std::size_t settled =
-        kernel.formula_newton(formula, kernel_curve(plan), settings, point_frame(plan),
-                              far_boxes_certificate(plan, tolerance), tolerance, count, &points[0].x,
-                              w.t_refined.data(), w.distance.data(), keep ? &on_the_way : nullptr);
-    given = keep;
+    const std::size_t settled = kernel.formula_newton(
+        formula, kernel_curve(plan), settings, point_frame(plan), far_boxes_certificate(plan, tolerance), tolerance,
+        count, &points[0].x, w.t_refined.data(), w.distance.data(), keep ? &on_the_way : nullptr);
     clock.lap(&StageSeconds::kernel);
     if (settled == count) return settled;
     // A lane not settled has its first distance h: rational_newton keeps it past its first test
     // where 1e-150 < h < 1e150 (the range where its length() is the plain square root), and then
     // leaves it where h is beyond the leave distance (kernels::Implementation::formula_newton).
-    for (std::size_t i = 0; 64 * i < count; ++i) {
-      std::uint64_t word = 0;
-      for (std::size_t l = 64 * i; l < std::min(count, 64 * (i + 1)); ++l) {
-        const double h = w.distance[l];
-        const bool beyond = std::isnan(w.t_refined[l]) && h > settings.leave_distance && h > 1e-150 && h < 1e150;
-        word |= std::uint64_t{beyond} << (l % 64);
-      }
-      leaves.set_word(i, word);
-    }
+    leaves = LaneSet::where(count, [&](std::size_t l) {
+      const double h = w.distance[l];
+      return std::isnan(w.t_refined[l]) && h > settings.leave_distance && h > 1e-150 && h < 1e150;
+    });
     return settled;
   }
   normalize_batch(plan, points, count, w);
-  given = true;
   clock.lap(&StageSeconds::form_b);
   // N / M is NaN where a coordinate is not finite (so a lane admit() would refuse never gets a
   // t), near a base point and far out; the Newton kernel leaves a NaN t (and a t off [0, 1])
@@ -80,16 +77,13 @@ std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t 
                          w.distance.data());
   clock.lap(&StageSeconds::refine);
   isolated_by_far_boxes(plan, w.t_refined.data(), w.distance.data(), tolerance, count, w.certified.data());
+  leaves =
+      LaneSet::where(count, [&](std::size_t l) { return w.distance[l] == std::numeric_limits<double>::infinity(); });
   std::size_t settled = 0;
-  for (std::size_t i = 0; 64 * i < count; ++i) {
-    std::uint64_t word = 0;
-    for (std::size_t l = 64 * i; l < std::min(count, 64 * (i + 1)); ++l) {
-      const bool answered = w.certified[l] && w.distance[l] <= tolerance;
-      settled += answered;
-      word |= std::uint64_t{w.distance[l] == std::numeric_limits<double>::infinity()} << (l % 64);  // left
-      if (!answered) w.t_refined[l] = PointResult::nan;
-    }
-    leaves.set_word(i, word);
+  for (std::size_t l = 0; l < count; ++l) {
+    const bool answered = w.certified[l] && w.distance[l] <= tolerance;
+    settled += answered;
+    if (!answered) w.t_refined[l] = PointResult::nan;
   }
   return settled;
 }
@@ -101,7 +95,8 @@ FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult
   const double tolerance = normalized_tolerance(plan, options);
   FormulaLeft left;
   const std::size_t settled_count =
-      settle_lanes(plan, points, count, tolerance, w, clock, left.first_iteration_leaves, left.given, keep);
+      settle_lanes(plan, points, count, tolerance, w, clock, left.first_iteration_leaves, keep);
+  left.given = keep || !fused(plan);
   auto answer = [&](std::size_t l) {
     PointResult& r = results[l];
     r = PointResult{};
@@ -113,17 +108,10 @@ FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult
     clock.lap(&StageSeconds::decide);
     return left;
   }
-  // Else the lanes it settles and those it leaves as bits, without a branch per lane: in a batch of
-  // both kinds that branch would be mispredicted at every change of kind.
-  LaneSet settled, leaves;
-  for (std::size_t i = 0; 64 * i < count; ++i) {
-    std::uint64_t word = 0;  // in a register, stored once
-    const std::size_t end = std::min(count, 64 * (i + 1));
-    for (std::size_t l = 64 * i; l < end; ++l) word |= std::uint64_t{!std::isnan(w.t_refined[l])} << (l % 64);
-    const std::uint64_t lanes = end - 64 * i == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << (end - 64 * i)) - 1;
-    settled.set_word(i, word);
-    leaves.set_word(i, lanes & ~word);
-  }
+  // Else the lanes it settles and those it leaves as bits: in a batch of both kinds a branch per
+  // lane would be mispredicted at every change of kind.
+  const LaneSet leaves = LaneSet::where(count, [&](std::size_t l) { return std::isnan(w.t_refined[l]); });
+  const LaneSet settled = LaneSet::where(count, [&](std::size_t l) { return !std::isnan(w.t_refined[l]); });
   settled.for_each(answer);
   leaves.for_each([&](std::size_t l) { left.lane_of[left.count++] = static_cast<std::uint8_t>(l); });
   clock.lap(&StageSeconds::decide);
@@ -131,17 +119,11 @@ FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult
 }
 
 LaneSet formula_first_left(LaneSet first_iteration_leaves, std::size_t count, const BatchWorkspace& w) {
-  LaneSet left;
-  if (first_iteration_leaves.empty()) return left;
-  for (std::size_t i = 0; 64 * i < count; ++i) {
-    std::uint64_t word = 0;
-    for (std::size_t l = 64 * i; l < std::min(count, 64 * (i + 1)); ++l) {
-      const double t = w.t_algebraic[l];
-      word |= std::uint64_t{w.active[l] && w.from_formula[l] && t >= 0.0 && t <= 1.0} << (l % 64);
-    }
-    left.set_word(i, word);
-  }
-  return left.both(first_iteration_leaves);
+  if (first_iteration_leaves.empty()) return {};
+  return LaneSet::where(count, [&](std::size_t l) {
+    const double t = w.t_algebraic[l];
+    return first_iteration_leaves.has(l) && w.active[l] && w.from_formula[l] && t >= 0.0 && t <= 1.0;
+  });
 }
 
 }  // namespace bezinv::detail

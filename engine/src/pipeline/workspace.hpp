@@ -29,17 +29,17 @@ class LaneSet {
  public:
   void add(std::size_t l, bool in) { words_[l / 64] |= static_cast<std::uint64_t>(in) << (l % 64); }
   bool has(std::size_t l) const { return (words_[l / 64] >> (l % 64)) & 1u; }
-  // Lanes 64 i .. 64 i + 63 as the bits of `word` (lane 64 i + b: bit b), for a set built a word at
-  // a time in a register (add() stores to memory at every lane).
-  void set_word(std::size_t i, std::uint64_t word) { words_[i] = word; }
-  // The lanes l < count whose byte flags[l] is not 0 (count <= kBatchLanes).
-  static LaneSet of_bytes(const std::uint8_t* flags, std::size_t count) {
+  // The lanes l < count (count <= kBatchLanes) where in(l) holds, without a branch per lane: each
+  // word built in a register and stored once (add() stores to memory at every lane), so that a
+  // batch whose lanes alternate between two kinds costs no mispredicted branches.
+  template <class In>
+  static LaneSet where(std::size_t count, In&& in) {
     LaneSet set;
     for (std::size_t i = 0; 64 * i < count; ++i) {
       std::uint64_t word = 0;
-      const std::size_t end = std::min<std::size_t>(64, count - 64 * i);
-      for (std::size_t b = 0; b < end; ++b) word |= static_cast<std::uint64_t>(flags[64 * i + b] != 0) << b;
-      set.set_word(i, word);
+      const std::size_t end = std::min(count, 64 * (i + 1));
+      for (std::size_t l = 64 * i; l < end; ++l) word |= std::uint64_t{static_cast<bool>(in(l))} << (l % 64);
+      set.words_[i] = word;
     }
     return set;
   }
