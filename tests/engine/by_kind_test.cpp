@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <vector>
@@ -112,6 +113,28 @@ TEST(LanesByKind, ALaneSetHoldsEveryLaneOfABatchInOrder) {
     EXPECT_EQ(low.has(l), l < 70) << l;
   }
   EXPECT_TRUE(odd.without(odd).empty());
+}
+
+// LaneSet::first and LaneSet::of_flags against add(), lane by lane: every count from 0 to a whole
+// batch (within a word, at its end, across it, an eight-lane step and its tail), random flags.
+TEST(LanesByKind, ALaneSetOfFlagsHoldsTheFlaggedLanesBelowTheCount) {
+  using detail::kBatchLanes;
+  std::mt19937_64 rng(5301);
+  std::array<std::uint8_t, kBatchLanes> flags;
+  for (std::size_t count = 0; count <= kBatchLanes; ++count) {
+    for (std::uint8_t& f : flags) f = static_cast<std::uint8_t>(rng() % 2);
+    detail::LaneSet expected, below;
+    for (std::size_t l = 0; l < count; ++l) {
+      expected.add(l, flags[l] != 0);
+      below.add(l, true);
+    }
+    const detail::LaneSet got = detail::LaneSet::of_flags(count, flags.data());
+    const detail::LaneSet first = detail::LaneSet::first(count);
+    for (std::size_t l = 0; l < kBatchLanes; ++l) {
+      EXPECT_EQ(got.has(l), expected.has(l)) << "count " << count << " lane " << l;
+      EXPECT_EQ(first.has(l), below.has(l)) << "count " << count << " lane " << l;
+    }
+  }
 }
 
 // set_aside_far on a batch of a degree-16 curve: points on it (near) and 1e-2 of the diagonal off

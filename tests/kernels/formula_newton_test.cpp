@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -143,13 +144,19 @@ TEST(FormulaNewton, SettlesLanesWithTheBitsOfTheKernelsItFuses) {
               std::vector<double> t(count, -1.0), d(count, -1.0), ku(count, -1.0), kv(count, -1.0),
                   kt(count, -1.0);
               const FormulaStart on_the_way{ku.data(), kv.data(), kt.data()};
+              std::vector<std::uint64_t> settled_bits((count + 63) / 64), leaves_bits((count + 63) / 64);
+              const FormulaLanes lane_bits{settled_bits.data(), leaves_bits.data()};
               const std::size_t got =
                   implementation->formula_newton(formula, normalized.view(shared), kFormulaPathSettings, frame,
                                                  certificate, tolerance, count, xy.data(), t.data(), d.data(),
-                                                 &on_the_way);
+                                                 &on_the_way, &lane_bits);
               std::vector<double> t_pieces(count, -1.0), d_pieces(count, -1.0);
               implementation->formula_newton(formula, normalized.view(shared), kFormulaPathSettings, frame, by_pieces,
-                                             tolerance, count, xy.data(), t_pieces.data(), d_pieces.data(), nullptr);
+                                             tolerance, count, xy.data(), t_pieces.data(), d_pieces.data(), nullptr,
+                                             nullptr);
+              const auto bit = [](const std::vector<std::uint64_t>& words, std::size_t l) {
+                return ((words[l / 64] >> (l % 64)) & 1u) != 0;
+              };
               std::size_t counted = 0;
               for (std::size_t l = 0; l < count; ++l) {
                 SCOPED_TRACE(std::string(implementation->name) + " n=" + std::to_string(n) + " steep " +
@@ -160,14 +167,17 @@ TEST(FormulaNewton, SettlesLanesWithTheBitsOfTheKernelsItFuses) {
                 EXPECT_TRUE(same_bits(ku[l], u[l]) && same_bits(kv[l], v[l]))
                     << "(" << ku[l] << ", " << kv[l] << ") against (" << u[l] << ", " << v[l] << ")";
                 EXPECT_TRUE(same_bits(kt[l], t_formula[l])) << kt[l] << " against " << t_formula[l];
+                EXPECT_EQ(bit(settled_bits, l), !std::isnan(t[l]));
                 if (std::isnan(t[l])) {  // not settled
                   const bool leaves = t_formula[l] >= 0.0 && t_formula[l] <= 1.0 && d[l] > 1e-150 && d[l] < 1e150 &&
                                       d[l] > kFormulaPathSettings.leave_distance;
                   const bool left = d_ref[l] == std::numeric_limits<double>::infinity();
                   EXPECT_EQ(leaves, left) << "first distance " << d[l] << ", rational_newton's " << d_ref[l];
+                  EXPECT_EQ(bit(leaves_bits, l), left) << "first distance " << d[l];
                   left_lanes += left;
                   continue;
                 }
+                EXPECT_FALSE(bit(leaves_bits, l));
                 ++counted;
                 EXPECT_TRUE(same_bits(t[l], t_ref[l])) << t[l] << " against " << t_ref[l];
                 EXPECT_TRUE(same_bits(d[l], d_ref[l])) << d[l] << " against " << d_ref[l];
@@ -211,7 +221,7 @@ TEST(FormulaNewton, RefusesDegreesItIsNotCompiledFor) {
   double xy[2] = {0.5, 0.5}, t = 0, d = 0;
   for (const Implementation* implementation : available_implementations())
     EXPECT_THROW(implementation->formula_newton(formula, quartic, kFormulaPathSettings, PointFrame{1, 0, 0, 1, 0},
-                                                certificate, 1e-8, 1, xy, &t, &d, nullptr),
+                                                certificate, 1e-8, 1, xy, &t, &d, nullptr, nullptr),
                  std::out_of_range);
 }
 

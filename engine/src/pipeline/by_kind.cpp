@@ -48,8 +48,7 @@ LaneSet take_from_stages_queue(std::size_t m, BatchWorkspace& w) {
   std::copy_n(&queue.v[first], m, w.v.begin());
   std::copy_n(&queue.t[first], m, w.t_algebraic.begin());
   queue.size = first;
-  const std::uint8_t* leaves = &queue.first_iteration_leaves[first];
-  return LaneSet::where(m, [&](std::size_t k) { return leaves[k] != 0; });
+  return LaneSet::of_flags(m, &queue.first_iteration_leaves[first]);
 }
 
 bool sets_far_lanes_aside(const PlanData& plan, const InvertOptions& options) {

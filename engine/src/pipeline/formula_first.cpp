@@ -38,32 +38,25 @@ bool fused(const PlanData& plan) {
 
 // w.u, w.v (the point normalized), w.t_algebraic (N / M), w.t_refined and w.distance of every
 // lane (u, v and N / M only with `keep` where fused), t_refined NaN where the lane is not answered
-// here, and in `leaves` the lanes rational_newton's first iteration leaves if their start is N / M
-// in [0, 1] (FormulaLeft): by the formula_newton kernel for a conic or a cubic, else by the kernels
-// it fuses, one after the other (the formula path of a curve's own formula, degree 4 and up: its
-// N / M and the Newton iterations cost more than the passes between them). Returns how many lanes
-// it answers.
+// here; in `settled` the lanes answered, and in `leaves` those whose N / M is in [0, 1] and whose
+// first rational_newton iteration from it leaves them (FormulaLeft): by the formula_newton kernel
+// for a conic or a cubic, else by the kernels it fuses, one after the other (the formula path of a
+// curve's own formula, degree 4 and up: its N / M and the Newton iterations cost more than the
+// passes between them). Returns how many lanes it answers.
 std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t count, double tolerance,
-                         BatchWorkspace& w, StageClock& clock, LaneSet& leaves, bool keep) {
+                         BatchWorkspace& w, StageClock& clock, LaneSet& settled, LaneSet& leaves, bool keep) {
   const kernels::Implementation& kernel = kernels::active_implementation();
   const kernels::PlaneFormula formula = plane_formula(fast_path_formula(plan));
   const kernels::NewtonSettings settings = on_curve_newton_settings(/*formula=*/true);
   if (fused(plan)) {
     static_assert(sizeof(Point) == 2 * sizeof(double));
     const kernels::FormulaStart on_the_way{w.u.data(), w.v.data(), w.t_algebraic.data()};
-    const std::size_t settled = kernel.formula_newton(
+    const kernels::FormulaLanes lanes{settled.words(), leaves.words()};
+    const std::size_t settled_count = kernel.formula_newton(
         formula, kernel_curve(plan), settings, point_frame(plan), far_boxes_certificate(plan, tolerance), tolerance,
-        count, &points[0].x, w.t_refined.data(), w.distance.data(), keep ? &on_the_way : nullptr);
+        count, &points[0].x, w.t_refined.data(), w.distance.data(), keep ? &on_the_way : nullptr, &lanes);
     clock.lap(&StageSeconds::kernel);
-    if (settled == count) return settled;
-    // A lane not settled has its first distance h: rational_newton keeps it past its first test
-    // where 1e-150 < h < 1e150 (the range where its length() is the plain square root), and then
-    // leaves it where h is beyond the leave distance (kernels::Implementation::formula_newton).
-    leaves = LaneSet::where(count, [&](std::size_t l) {
-      const double h = w.distance[l];
-      return std::isnan(w.t_refined[l]) && h > settings.leave_distance && h > 1e-150 && h < 1e150;
-    });
-    return settled;
+    return settled_count;
   }
   normalize_batch(plan, points, count, w);
   clock.lap(&StageSeconds::form_b);
@@ -77,15 +70,18 @@ std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t 
                          w.distance.data());
   clock.lap(&StageSeconds::refine);
   isolated_by_far_boxes(plan, w.t_refined.data(), w.distance.data(), tolerance, count, w.certified.data());
-  leaves =
-      LaneSet::where(count, [&](std::size_t l) { return w.distance[l] == std::numeric_limits<double>::infinity(); });
-  std::size_t settled = 0;
+  leaves = LaneSet::where(count, [&](std::size_t l) {
+    const double t = w.t_algebraic[l];
+    return (w.distance[l] == std::numeric_limits<double>::infinity()) & (t >= 0.0) & (t <= 1.0);
+  });
+  std::size_t settled_count = 0;
   for (std::size_t l = 0; l < count; ++l) {
     const bool answered = w.certified[l] && w.distance[l] <= tolerance;
-    settled += answered;
+    settled_count += answered;
+    settled.add(l, answered);
     if (!answered) w.t_refined[l] = PointResult::nan;
   }
-  return settled;
+  return settled_count;
 }
 
 }  // namespace
@@ -94,8 +90,9 @@ FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult
                           const InvertOptions& options, BatchWorkspace& w, StageClock& clock, bool keep) {
   const double tolerance = normalized_tolerance(plan, options);
   FormulaLeft left;
+  LaneSet settled;
   const std::size_t settled_count =
-      settle_lanes(plan, points, count, tolerance, w, clock, left.first_iteration_leaves, keep);
+      settle_lanes(plan, points, count, tolerance, w, clock, settled, left.first_iteration_leaves, keep);
   left.given = keep || !fused(plan);
   auto answer = [&](std::size_t l) {
     PointResult& r = results[l];
@@ -108,22 +105,19 @@ FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult
     clock.lap(&StageSeconds::decide);
     return left;
   }
-  // Else the lanes it settles and those it leaves as bits: in a batch of both kinds a branch per
-  // lane would be mispredicted at every change of kind.
-  const LaneSet leaves = LaneSet::where(count, [&](std::size_t l) { return std::isnan(w.t_refined[l]); });
-  const LaneSet settled = LaneSet::where(count, [&](std::size_t l) { return !std::isnan(w.t_refined[l]); });
+  // Else by the sets of lanes settle_lanes gives: in a batch of both kinds a branch per lane would
+  // be mispredicted at every change of kind.
   settled.for_each(answer);
-  leaves.for_each([&](std::size_t l) { left.lane_of[left.count++] = static_cast<std::uint8_t>(l); });
+  LaneSet::first(count).without(settled).for_each(
+      [&](std::size_t l) { left.lane_of[left.count++] = static_cast<std::uint8_t>(l); });
   clock.lap(&StageSeconds::decide);
   return left;
 }
 
 LaneSet formula_first_left(LaneSet first_iteration_leaves, std::size_t count, const BatchWorkspace& w) {
   if (first_iteration_leaves.empty()) return {};
-  return LaneSet::where(count, [&](std::size_t l) {
-    const double t = w.t_algebraic[l];
-    return first_iteration_leaves.has(l) && w.active[l] && w.from_formula[l] && t >= 0.0 && t <= 1.0;
-  });
+  // (Their N / M is in [0, 1]: from_formula, where the lane is active.)
+  return first_iteration_leaves.both(LaneSet::of_flags(count, w.from_formula.data()));
 }
 
 }  // namespace bezinv::detail

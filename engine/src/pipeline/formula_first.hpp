@@ -32,9 +32,9 @@ bool takes_formula_first(const PlanData& plan, const InvertOptions& options);
 struct FormulaLeft {
   std::size_t count = 0;                          // how many
   std::array<std::uint8_t, kBatchLanes> lane_of;  // which, lane_of[0..count), in order
-  // Of the batch's lanes, those that rational_newton's first iteration leaves to the off-curve
-  // kernels (first distance beyond the formula path's leave distance) where their start is N / M
-  // in [0, 1]: which the stages tell (formula_first_left).
+  // Of the batch's lanes, those whose N / M is in [0, 1] and whose first rational_newton iteration
+  // from it leaves them to the off-curve kernels (first distance beyond the formula path's leave
+  // distance): the stages take N / M as their start where the lane is active (formula_first_left).
   LaneSet first_iteration_leaves;
   // Whether w holds every lane's point normalized (u, v) and N / M (t_algebraic).
   bool given = false;
@@ -52,8 +52,8 @@ FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult
                           const InvertOptions& options, BatchWorkspace& w, StageClock& clock, bool keep = true);
 
 // The lanes of a batch formula_first left (their starts told by fast_path_seed since) that
-// rational_newton's first iteration leaves: those of `first_iteration_leaves` given t by the
-// formula in [0, 1].
+// rational_newton's first iteration leaves: those of `first_iteration_leaves` (N / M in [0, 1])
+// given t by the formula (from_formula: active, N / M finite).
 LaneSet formula_first_left(LaneSet first_iteration_leaves, std::size_t count, const BatchWorkspace& w);
 
 }  // namespace bezinv::detail

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "bezinv/tolerances.hpp"
@@ -43,6 +44,30 @@ class LaneSet {
     }
     return set;
   }
+  // The lanes l < count (count <= kBatchLanes).
+  static LaneSet first(std::size_t count) {
+    LaneSet set;
+    for (std::size_t i = 0; 64 * i < count; ++i)
+      set.words_[i] = count >= 64 * (i + 1) ? ~std::uint64_t{0} : (std::uint64_t{1} << (count % 64)) - 1;
+    return set;
+  }
+  // The lanes l < count whose flag is 1 (flags 0 or 1, as the workspace's byte arrays hold): eight
+  // lanes a step, their bytes read as one word and gathered into eight bits by a multiplication
+  // (byte j, 0 or 1, lands in bit 56 + j of the product, and no two bytes' terms meet).
+  static LaneSet of_flags(std::size_t count, const std::uint8_t* flags) {
+    static_assert(std::endian::native == std::endian::little, "byte j of the word is flags[l + j]");
+    LaneSet set;
+    std::size_t l = 0;
+    for (; l + 8 <= count; l += 8) {
+      std::uint64_t bytes;
+      std::memcpy(&bytes, flags + l, sizeof bytes);
+      set.words_[l / 64] |= ((bytes * 0x0102040810204080u) >> 56) << (l % 64);
+    }
+    for (; l < count; ++l) set.add(l, flags[l] != 0);
+    return set;
+  }
+  // Its words, for a kernel that sets the bits of lanes (kernels::FormulaLanes).
+  std::uint64_t* words() { return words_.data(); }
   bool empty() const {
     std::uint64_t any = 0;
     for (const std::uint64_t word : words_) any |= word;

@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 
 #include "batch/formula_parameter-inl.hpp"
@@ -32,6 +33,31 @@
 HWY_BEFORE_NAMESPACE();
 namespace bezinv::kernels::HWY_NAMESPACE {
 
+// Sets in `words` (lane l: bit l % 64 of word l / 64) the bits of `bits` (bit k: lane first + k).
+HWY_INLINE void or_lane_bits(std::uint64_t bits, std::size_t first, std::uint64_t* words) {
+  const std::size_t shift = first % 64;
+  words[first / 64] |= bits << shift;
+  if (shift != 0 && (bits >> (64 - shift)) != 0) words[first / 64 + 1] |= bits >> (64 - shift);
+}
+
+// A group's mask as bits (bit k: the group's lane k), gathered in a register: a vector of doubles
+// has at most eight lanes, one byte of mask bits.
+template <class D>
+HWY_INLINE std::uint64_t group_bits(D, const hn::Mask<D>& m) {
+  namespace hw = hwy::HWY_NAMESPACE;
+  using DN = typename D::D;
+  const DN dn;
+  constexpr std::size_t L = hw::MaxLanes(DN());
+  static_assert(L <= 8 && hn::MaxLanes(D()) <= 64);
+  std::uint64_t bits = 0;
+  for (int g = 0; g < D::kVectors; ++g) {
+    std::uint8_t byte = 0;
+    hw::StoreMaskBits(dn, m.m[g], &byte);
+    bits |= std::uint64_t{byte} << (static_cast<std::size_t>(g) * L);
+  }
+  return bits;
+}
+
 // One group of LW = MaxLanes(D) points, xy[2 first ..] (`lanes` of them; the others padded with
 // NaN points, which no step settles).
 template <int N, class D>
@@ -40,7 +66,7 @@ HWY_INLINE std::size_t formula_newton_group(D d, const PlaneFormula& formula, co
                                             const PieceCertificate& certificate, double tolerance,
                                             std::size_t first, std::size_t lanes, const double* HWY_RESTRICT xy,
                                             double* HWY_RESTRICT t_out, double* HWY_RESTRICT distance_out,
-                                            const FormulaStart* on_the_way) {
+                                            const FormulaStart* on_the_way, const FormulaLanes* lane_bits) {
   namespace hw = hwy::HWY_NAMESPACE;
   using DN = typename D::D;
   using V = hn::Vec<D>;
@@ -118,20 +144,33 @@ HWY_INLINE std::size_t formula_newton_group(D d, const PlaneFormula& formula, co
   hn::StoreGroup(hn::IfThenElse(settled, taken.next, hn::Set(d, std::numeric_limits<double>::quiet_NaN())), d, t_out,
                  first, lanes);
   hn::StoreGroup(hn::IfThenElse(settled, distance, jet.h), d, distance_out, first, lanes);
+  if (lane_bits != nullptr && count == lanes) {  // every lane settled (a group on the curve): none leaves
+    or_lane_bits(lanes == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << lanes) - 1, first, lane_bits->settled);
+  } else if (lane_bits != nullptr) {
+    // A lane rational_newton's first iteration from N / M leaves: N / M in [0, 1], and its first
+    // distance in length()'s own range (there the iteration's first test keeps the lane) and beyond
+    // the leave distance. (Padding lanes: N / M NaN, so neither set.)
+    const V h = jet.h;
+    const M in_range = hn::And(hn::Gt(h, hn::Set(d, 1e-150)), hn::Lt(h, hn::Set(d, 1e150)));
+    const M leaves = hn::AndNot(settled, hn::And(inside, hn::And(in_range, hn::Gt(h, hn::Set(d, settings.leave_distance)))));
+    or_lane_bits(group_bits(d, settled), first, lane_bits->settled);
+    or_lane_bits(group_bits(d, leaves), first, lane_bits->leaves);
+  }
   return count;
 }
 
 std::size_t formula_newton_batch(const PlaneFormula& formula, const RationalCurve& curve,
                                  const NewtonSettings& settings, const PointFrame& frame,
                                  const PieceCertificate& certificate, double tolerance, std::size_t count,
-                                 const double* xy, double* t, double* distance, const FormulaStart* start) {
+                                 const double* xy, double* t, double* distance, const FormulaStart* start,
+                                 const FormulaLanes* lane_bits) {
   check_size<kFormulaParameterMinDegree, kFormulaParameterMaxDegree>("formula_newton's formula", formula.degree);
   std::size_t settled = 0;
   dispatch_size<kFormulaNewtonMinDegree, kFormulaNewtonMaxDegree>("formula_newton", curve.degree, [&](auto size) {
     constexpr int N = decltype(size)::value;
     wide::ForEachGroup<kNewtonWideVectors<N>>(count, [&](auto group, std::size_t first, std::size_t lanes) {
       settled += formula_newton_group<N>(group, formula, curve, settings, frame, certificate, tolerance, first, lanes,
-                                         xy, t, distance, start);
+                                         xy, t, distance, start, lane_bits);
     });
   });
   return settled;

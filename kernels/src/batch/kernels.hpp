@@ -43,7 +43,7 @@ using FormulaNewtonKernel = std::size_t (*)(const PlaneFormula& formula, const R
                                             const NewtonSettings& settings, const PointFrame& frame,
                                             const PieceCertificate& certificate, double tolerance, std::size_t count,
                                             const double* xy, double* t, double* distance,
-                                            const FormulaStart* start);
+                                            const FormulaStart* start, const FormulaLanes* lanes);
 
 // nullptr when this build did not compile `target`.
 SymmetricSvdKernel symmetric_svd_kernel(std::int64_t target);

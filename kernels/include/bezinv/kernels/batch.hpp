@@ -13,6 +13,7 @@
 //     component r of the null vector       z[r * stride + l]
 // so that one SIMD load fetches the same entry of consecutive matrices.
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <string_view>
@@ -138,6 +139,16 @@ struct FormulaStart {
   double* u;
   double* v;
   double* t;
+};
+
+// Which lanes formula_newton settles, and which of the others rational_newton's first iteration
+// leaves where started from N / M (N / M in [0, 1], 1e-150 < h < 1e150 and h above
+// settings.leave_distance), as bits: lane l is bit l % 64 of word l / 64, (count + 63) / 64 words.
+// The kernel sets bits and clears none (the caller zeroes the words), so that a caller that sorts
+// the lanes by kind need not test them one by one.
+struct FormulaLanes {
+  std::uint64_t* settled;
+  std::uint64_t* leaves;
 };
 
 // The isolation certificate's first test as formula_newton makes it (the engine's
@@ -333,13 +344,14 @@ struct Implementation {
   // the caller takes the lane the long way, and where t0 = N / M is in [0, 1] and
   // 1e-150 < h < 1e150 (length()'s own range: there rational_newton's first test keeps the lane),
   // h above settings.leave_distance tells that rational_newton's first iteration leaves it.
-  // With `start` (else null), each lane's normalized point and N / M too (FormulaStart).
-  // Returns the number of lanes settled. curve.degree in [kFormulaNewtonMinDegree,
+  // With `start` (else null), each lane's normalized point and N / M too (FormulaStart); with
+  // `lanes` (else null), the lanes settled and those the first iteration leaves as bits
+  // (FormulaLanes). Returns the number of lanes settled. curve.degree in [kFormulaNewtonMinDegree,
   // kFormulaNewtonMaxDegree], formula.degree in formula_parameter's range.
   std::size_t (*formula_newton)(const PlaneFormula& formula, const RationalCurve& curve, const NewtonSettings& settings,
                                 const PointFrame& frame, const PieceCertificate& certificate, double tolerance,
                                 std::size_t count, const double* xy, double* t, double* distance,
-                                const FormulaStart* start);
+                                const FormulaStart* start, const FormulaLanes* lanes);
 };
 
 // The implementation for this process: the best the CPU supports, or the one named by the
