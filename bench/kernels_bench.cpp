@@ -300,11 +300,11 @@ void BM_KernelFormulaNewton(benchmark::State& state, const Implementation* impl,
   for (auto _ : state) {
     const PlaneFormula formula{1, 0.0, 0.0, 1.0, 1.0, 1e6, 1e-6, in.formula[b].data(), in.formula[b].data() + 3};
     const RationalCurve curve{n, in.x_num[b].data(), in.x_den[b].data(), in.y_num[b].data(), in.y_den[b].data()};
-    std::array<std::uint64_t, (kBatch + 63) / 64> settled_bits{}, leaves_bits{};
-    const FormulaLanes lanes{settled_bits.data(), leaves_bits.data()};
+    std::array<std::uint64_t, (kBatch + 63) / 64> left_bits{}, leaves_bits{};
+    const FormulaLanes lanes{left_bits.data(), leaves_bits.data()};
     settled += impl->formula_newton(formula, curve, settings, frame, certificate, 1e-8, kBatch, in.xy[b].data(),
                                     t.data(), distance.data(), &start, &lanes);
-    benchmark::DoNotOptimize(settled_bits.data());
+    benchmark::DoNotOptimize(left_bits.data());
     benchmark::DoNotOptimize(leaves_bits.data());
     benchmark::DoNotOptimize(distance.data());
     b = (b + 1) % in.xy.size();

@@ -144,8 +144,8 @@ TEST(FormulaNewton, SettlesLanesWithTheBitsOfTheKernelsItFuses) {
               std::vector<double> t(count, -1.0), d(count, -1.0), ku(count, -1.0), kv(count, -1.0),
                   kt(count, -1.0);
               const FormulaStart on_the_way{ku.data(), kv.data(), kt.data()};
-              std::vector<std::uint64_t> settled_bits((count + 63) / 64), leaves_bits((count + 63) / 64);
-              const FormulaLanes lane_bits{settled_bits.data(), leaves_bits.data()};
+              std::vector<std::uint64_t> left_bits((count + 63) / 64), leaves_bits((count + 63) / 64);
+              const FormulaLanes lane_bits{left_bits.data(), leaves_bits.data()};
               const std::size_t got =
                   implementation->formula_newton(formula, normalized.view(shared), kFormulaPathSettings, frame,
                                                  certificate, tolerance, count, xy.data(), t.data(), d.data(),
@@ -167,7 +167,7 @@ TEST(FormulaNewton, SettlesLanesWithTheBitsOfTheKernelsItFuses) {
                 EXPECT_TRUE(same_bits(ku[l], u[l]) && same_bits(kv[l], v[l]))
                     << "(" << ku[l] << ", " << kv[l] << ") against (" << u[l] << ", " << v[l] << ")";
                 EXPECT_TRUE(same_bits(kt[l], t_formula[l])) << kt[l] << " against " << t_formula[l];
-                EXPECT_EQ(bit(settled_bits, l), !std::isnan(t[l]));
+                EXPECT_EQ(bit(left_bits, l), std::isnan(t[l]));
                 if (std::isnan(t[l])) {  // not settled
                   const bool leaves = t_formula[l] >= 0.0 && t_formula[l] <= 1.0 && d[l] > 1e-150 && d[l] < 1e150 &&
                                       d[l] > kFormulaPathSettings.leave_distance;
@@ -189,6 +189,8 @@ TEST(FormulaNewton, SettlesLanesWithTheBitsOfTheKernelsItFuses) {
                 }
               }
               EXPECT_EQ(got, counted);
+              for (std::size_t l = count; l < 64 * left_bits.size(); ++l)  // a group's padding lanes
+                EXPECT_FALSE(bit(left_bits, l) || bit(leaves_bits, l)) << "lane " << l << " of " << count;
               settled += counted;
               lanes_total += count;
               for (std::size_t l = 0; l < count; ++l) {

@@ -38,20 +38,20 @@ bool fused(const PlanData& plan) {
 
 // w.u, w.v (the point normalized), w.t_algebraic (N / M), w.t_refined and w.distance of every
 // lane (u, v and N / M only with `keep` where fused), t_refined NaN where the lane is not answered
-// here; in `settled` the lanes answered, and in `leaves` those whose N / M is in [0, 1] and whose
+// here; in `left` the lanes not answered, and in `leaves` those whose N / M is in [0, 1] and whose
 // first rational_newton iteration from it leaves them (FormulaLeft): by the formula_newton kernel
 // for a conic or a cubic, else by the kernels it fuses, one after the other (the formula path of a
 // curve's own formula, degree 4 and up: its N / M and the Newton iterations cost more than the
 // passes between them). Returns how many lanes it answers.
 std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t count, double tolerance,
-                         BatchWorkspace& w, StageClock& clock, LaneSet& settled, LaneSet& leaves, bool keep) {
+                         BatchWorkspace& w, StageClock& clock, LaneSet& left, LaneSet& leaves, bool keep) {
   const kernels::Implementation& kernel = kernels::active_implementation();
   const kernels::PlaneFormula formula = plane_formula(fast_path_formula(plan));
   const kernels::NewtonSettings settings = on_curve_newton_settings(/*formula=*/true);
   if (fused(plan)) {
     static_assert(sizeof(Point) == 2 * sizeof(double));
     const kernels::FormulaStart on_the_way{w.u.data(), w.v.data(), w.t_algebraic.data()};
-    const kernels::FormulaLanes lanes{settled.words(), leaves.words()};
+    const kernels::FormulaLanes lanes{left.words(), leaves.words()};
     const std::size_t settled_count = kernel.formula_newton(
         formula, kernel_curve(plan), settings, point_frame(plan), far_boxes_certificate(plan, tolerance), tolerance,
         count, &points[0].x, w.t_refined.data(), w.distance.data(), keep ? &on_the_way : nullptr, &lanes);
@@ -78,7 +78,7 @@ std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t 
   for (std::size_t l = 0; l < count; ++l) {
     const bool answered = w.certified[l] && w.distance[l] <= tolerance;
     settled_count += answered;
-    settled.add(l, answered);
+    left.add(l, !answered);
     if (!answered) w.t_refined[l] = PointResult::nan;
   }
   return settled_count;
@@ -90,9 +90,9 @@ FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult
                           const InvertOptions& options, BatchWorkspace& w, StageClock& clock, bool keep) {
   const double tolerance = normalized_tolerance(plan, options);
   FormulaLeft left;
-  LaneSet settled;
+  LaneSet not_settled;
   const std::size_t settled_count =
-      settle_lanes(plan, points, count, tolerance, w, clock, settled, left.first_iteration_leaves, keep);
+      settle_lanes(plan, points, count, tolerance, w, clock, not_settled, left.first_iteration_leaves, keep);
   left.given = keep || !fused(plan);
   auto answer = [&](std::size_t l) {
     PointResult& r = results[l];
@@ -107,9 +107,8 @@ FormulaLeft formula_first(const PlanData& plan, const Point* points, PointResult
   }
   // Else by the sets of lanes settle_lanes gives: in a batch of both kinds a branch per lane would
   // be mispredicted at every change of kind.
-  settled.for_each(answer);
-  LaneSet::first(count).without(settled).for_each(
-      [&](std::size_t l) { left.lane_of[left.count++] = static_cast<std::uint8_t>(l); });
+  LaneSet::first(count).without(not_settled).for_each(answer);
+  not_settled.for_each([&](std::size_t l) { left.lane_of[left.count++] = static_cast<std::uint8_t>(l); });
   clock.lap(&StageSeconds::decide);
   return left;
 }

@@ -58,6 +58,29 @@ HWY_INLINE std::uint64_t group_bits(D, const hn::Mask<D>& m) {
   return bits;
 }
 
+// After a group's stores, the bits of its lanes not settled (t NaN) and of those that
+// rational_newton's first iteration from N / M leaves: N / M (t0, the group's array) in [0, 1], and
+// the first distance h (distance_out, where not settled) in length()'s own range (there the
+// iteration's first test keeps the lane) and beyond the leave distance. Out of line and from memory:
+// made in the kernel from its registers, the masks it needs live through the certificate measured
+// 3-4% slower on a curve, where no group calls this.
+template <class D>
+HWY_NOINLINE void group_lane_bits(D d, const NewtonSettings& settings, const double* HWY_RESTRICT t0,
+                                  std::size_t first, std::size_t lanes, const double* HWY_RESTRICT t_out,
+                                  const double* HWY_RESTRICT distance_out, const FormulaLanes& bits) {
+  using M = hn::Mask<D>;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto t = hn::LoadGroup(d, t_out, first, lanes, nan), h = hn::LoadGroup(d, distance_out, first, lanes, nan);
+  const auto start = hn::Load(d, t0);
+  const M left = hn::IsNaN(t);
+  const M inside = hn::And(hn::Ge(start, hn::Zero(d)), hn::Le(start, hn::Set(d, 1.0)));
+  const M in_range = hn::And(hn::Gt(h, hn::Set(d, 1e-150)), hn::Lt(h, hn::Set(d, 1e150)));
+  const M leaves = hn::And(left, hn::And(inside, hn::And(in_range, hn::Gt(h, hn::Set(d, settings.leave_distance)))));
+  const std::uint64_t group = (std::uint64_t{1} << lanes) - 1;  // lanes < 64: padding lanes masked off
+  or_lane_bits(group_bits(d, left) & group, first, bits.left);
+  or_lane_bits(group_bits(d, leaves) & group, first, bits.leaves);
+}
+
 // One group of LW = MaxLanes(D) points, xy[2 first ..] (`lanes` of them; the others padded with
 // NaN points, which no step settles).
 template <int N, class D>
@@ -144,18 +167,8 @@ HWY_INLINE std::size_t formula_newton_group(D d, const PlaneFormula& formula, co
   hn::StoreGroup(hn::IfThenElse(settled, taken.next, hn::Set(d, std::numeric_limits<double>::quiet_NaN())), d, t_out,
                  first, lanes);
   hn::StoreGroup(hn::IfThenElse(settled, distance, jet.h), d, distance_out, first, lanes);
-  if (lane_bits != nullptr && count == lanes) {  // every lane settled (a group on the curve): none leaves
-    or_lane_bits(lanes == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << lanes) - 1, first, lane_bits->settled);
-  } else if (lane_bits != nullptr) {
-    // A lane rational_newton's first iteration from N / M leaves: N / M in [0, 1], and its first
-    // distance in length()'s own range (there the iteration's first test keeps the lane) and beyond
-    // the leave distance. (Padding lanes: N / M NaN, so neither set.)
-    const V h = jet.h;
-    const M in_range = hn::And(hn::Gt(h, hn::Set(d, 1e-150)), hn::Lt(h, hn::Set(d, 1e150)));
-    const M leaves = hn::AndNot(settled, hn::And(inside, hn::And(in_range, hn::Gt(h, hn::Set(d, settings.leave_distance)))));
-    or_lane_bits(group_bits(d, settled), first, lane_bits->settled);
-    or_lane_bits(group_bits(d, leaves), first, lane_bits->leaves);
-  }
+  if (lane_bits != nullptr && count < lanes)  // (a group all settled, as on a curve, sets no bit)
+    group_lane_bits(d, settings, t0, first, lanes, t_out, distance_out, *lane_bits);
   return count;
 }
 

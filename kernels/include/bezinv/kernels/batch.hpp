@@ -141,13 +141,13 @@ struct FormulaStart {
   double* t;
 };
 
-// Which lanes formula_newton settles, and which of the others rational_newton's first iteration
+// Which lanes formula_newton does not settle, and which of those rational_newton's first iteration
 // leaves where started from N / M (N / M in [0, 1], 1e-150 < h < 1e150 and h above
 // settings.leave_distance), as bits: lane l is bit l % 64 of word l / 64, (count + 63) / 64 words.
 // The kernel sets bits and clears none (the caller zeroes the words), so that a caller that sorts
-// the lanes by kind need not test them one by one.
+// the lanes by kind need not test them one by one; a batch all settled (on a curve) sets none.
 struct FormulaLanes {
-  std::uint64_t* settled;
+  std::uint64_t* left;
   std::uint64_t* leaves;
 };
 
@@ -345,7 +345,7 @@ struct Implementation {
   // 1e-150 < h < 1e150 (length()'s own range: there rational_newton's first test keeps the lane),
   // h above settings.leave_distance tells that rational_newton's first iteration leaves it.
   // With `start` (else null), each lane's normalized point and N / M too (FormulaStart); with
-  // `lanes` (else null), the lanes settled and those the first iteration leaves as bits
+  // `lanes` (else null), the lanes not settled and those the first iteration leaves as bits
   // (FormulaLanes). Returns the number of lanes settled. curve.degree in [kFormulaNewtonMinDegree,
   // kFormulaNewtonMaxDegree], formula.degree in formula_parameter's range.
   std::size_t (*formula_newton)(const PlaneFormula& formula, const RationalCurve& curve, const NewtonSettings& settings,
