@@ -394,9 +394,11 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
       rows.push_back(cusp_row(curve, k, stress_curve.t1, diagonal, tolerance));
     return rows;
   }
-  // Half on_curve's rows, half noisy's, at the relative tolerance `relative`.
-  const auto on_and_noisy_rows = [&](double relative) {
+  // Half on_curve's rows, half noisy's, at the relative tolerance `relative` (how many on_curve's:
+  // *on_curve_rows).
+  const auto on_and_noisy_rows = [&](double relative, std::size_t* on_curve_rows = nullptr) {
     std::vector<StressRow> rows = stress_rows(Family::on_curve, stress_curve, sampling, count / 2, relative, rng);
+    if (on_curve_rows != nullptr) *on_curve_rows = rows.size();
     std::vector<StressRow> off = stress_rows(Family::noisy, stress_curve, sampling, count - count / 2, relative, rng);
     rows.insert(rows.end(), off.begin(), off.end());
     return rows;
@@ -414,8 +416,10 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
     const double diagonal3 = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                                        (hi[2] - lo[2]) * (hi[2] - lo[2]));
     const double relative = relative_tolerance * diagonal3 / diagonal;
-    std::vector<StressRow> rows = on_and_noisy_rows(relative);
-    for (StressRow& row : rows) {
+    std::size_t on_curve_rows = 0;
+    std::vector<StressRow> rows = on_and_noisy_rows(relative, &on_curve_rows);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      StressRow& row = rows[i];
       const double x = row.point.x, y = row.point.y;
       // Off the plane only where the status cannot change: rows off the curve beyond doubt.
       const bool off = row.acceptable == bit(Status::off_curve);
@@ -425,9 +429,12 @@ std::vector<StressRow> stress_rows(Family family, const StressCurve& stress_curv
       const std::array<double, 3>& n = stress_curve.e3;
       row.point = {a[0] * x + b[0] * y + h * n[0], a[1] * x + b[1] * y + h * n[1]};
       row.z = a[2] * x + b[2] * y + h * n[2];
-      // The lifted point and curve are rounded: the truth again, in space, from the plane's.
+      // The lifted point and curve are rounded: the truth again, in space, from the plane's, and of
+      // the same kind: for a noisy row the nearest point of the segment (an off_curve row's t, and
+      // an ok row's near an end), as the plane's noisy family has it, whatever statuses are right.
+      const bool from_noisy = i >= on_curve_rows;
       const HighPrecisionNearest truth3 =
-          high_precision_nearest(lifted, row.point, row.t_true, /*segment_only=*/off, row.z);
+          high_precision_nearest(lifted, row.point, row.t_true, /*segment_only=*/from_noisy, row.z);
       if (truth3.converged) {
         row.t_true = truth3.t;
         row.distance = truth3.distance;

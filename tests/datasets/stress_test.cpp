@@ -159,6 +159,30 @@ TEST(StressRows, EveryFamilysTruthIsWhereTheExactDistanceHasAMinimum) {
   EXPECT_GE(checked, 100);
 }
 
+// The space family's rows are the plane's on_curve and noisy rows lifted, and a noisy row's truth
+// is the nearest point of the segment, as in the plane (an off_curve answer's t): at a tolerance
+// loose enough that rows near an end are ambiguous (ok, outside_segment or off_curve right), the
+// truth of an off_curve row stays on the segment, not on the extension beyond the end.
+TEST(StressRows, ASpaceRowOffTheCurveHasTheNearestPointOfTheSegmentAsItsTruth) {
+  int off_curve = 0, at_an_end = 0;
+  for (int degree : {2, 3, 5})
+    for (int index = 0; index < 4; ++index) {
+      std::mt19937_64 rng(9090 + 10 * degree + index);
+      const auto curve = stress_curve(Family::space, CurveKind::bezier, degree, index, rng);
+      if (!curve) continue;
+      const CurveSampling sampling(curve->curve);
+      for (const StressRow& r : stress_rows(Family::space, *curve, sampling, 2000, 1e-4, rng)) {
+        if (r.expected != Status::off_curve || !std::isfinite(r.t_true)) continue;
+        ++off_curve;
+        at_an_end += r.t_true == 0.0 || r.t_true == 1.0;
+        EXPECT_GE(r.t_true, 0.0) << "degree " << degree << " curve " << index;
+        EXPECT_LE(r.t_true, 1.0) << "degree " << degree << " curve " << index;
+      }
+    }
+  EXPECT_GE(off_curve, 1000);
+  EXPECT_GE(at_an_end, 5);  // rows whose nearest point of the segment is an end
+}
+
 StressRow row(Status expected, double t_true, unsigned also = 0) {
   StressRow r;
   r.point = {0.25, 0.5};

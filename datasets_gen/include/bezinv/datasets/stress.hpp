@@ -43,8 +43,10 @@
 //              space: on_curve's and noisy's rows, the noisy ones off the curve moved off the plane
 //              too, by up to twice their distance. A plane curve's nearest point to a point off its
 //              plane is the nearest point to the point's foot in the plane, so the plane truth holds
-//              (t the same, distance sqrt(d^2 + h^2)); statuses for the tolerance relative to the
-//              space curve's box. Status ok, or off_curve.
+//              (t the same, distance sqrt(d^2 + h^2)), computed again in space on the rounded
+//              lifted point and curve, of the same kind (a noisy row's the nearest point of the
+//              segment); statuses for the tolerance relative to the space curve's box. Status ok,
+//              or off_curve.
 //   graphs     graphs of smooth functions y = f(x) (sin 3x, e^x, the easing curve 1/(1 + 4x^2)),
 //              control points (i/n, f(i/n)), every other one turned by a random angle; weights
 //              0.5..2 (rational_bezier; rational: the weights on y alone, so x stays polynomial).
