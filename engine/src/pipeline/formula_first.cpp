@@ -74,14 +74,9 @@ std::size_t settle_lanes(const PlanData& plan, const Point* points, std::size_t 
     const double t = w.t_algebraic[l];
     return (w.distance[l] == std::numeric_limits<double>::infinity()) & (t >= 0.0) & (t <= 1.0);
   });
-  std::size_t settled_count = 0;
-  for (std::size_t l = 0; l < count; ++l) {
-    const bool answered = w.certified[l] && w.distance[l] <= tolerance;
-    settled_count += answered;
-    left.add(l, !answered);
-    if (!answered) w.t_refined[l] = PointResult::nan;
-  }
-  return settled_count;
+  left = LaneSet::where(count, [&](std::size_t l) { return !(w.certified[l] && w.distance[l] <= tolerance); });
+  left.for_each([&](std::size_t l) { w.t_refined[l] = PointResult::nan; });
+  return count - left.size();
 }
 
 }  // namespace

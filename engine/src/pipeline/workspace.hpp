@@ -68,6 +68,12 @@ class LaneSet {
   }
   // Its words, for a kernel that sets the bits of lanes (kernels::FormulaLanes).
   std::uint64_t* words() { return words_.data(); }
+  // How many lanes it holds.
+  std::size_t size() const {
+    std::size_t n = 0;
+    for (const std::uint64_t word : words_) n += static_cast<std::size_t>(std::popcount(word));
+    return n;
+  }
   bool empty() const {
     std::uint64_t any = 0;
     for (const std::uint64_t word : words_) any |= word;

@@ -63,7 +63,7 @@ HWY_INLINE std::uint64_t group_bits(D, const hn::Mask<D>& m) {
 // the first distance h (distance_out, where not settled) in length()'s own range (there the
 // iteration's first test keeps the lane) and beyond the leave distance. Out of line and from memory:
 // made in the kernel from its registers, the masks it needs live through the certificate measured
-// 3-4% slower on a curve, where no group calls this.
+// 3-5% slower on a curve, where no group calls this.
 template <class D>
 HWY_NOINLINE void group_lane_bits(D d, const NewtonSettings& settings, const double* HWY_RESTRICT t0,
                                   std::size_t first, std::size_t lanes, const double* HWY_RESTRICT t_out,
