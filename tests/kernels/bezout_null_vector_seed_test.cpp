@@ -210,18 +210,21 @@ TEST(BezoutNullVectorSeed, NullVectorsOfConstructedMatrices) {
   RecordProperty("worst_one_minus_cos", std::to_string(worst_cos));
 }
 
-
 // The residual only where the seed settled (settled_defect; the engine's kFastPathMaxDefect):
 // against the same kernel asked for every lane's residual (settled_defect 1), bit for bit, both
 // seeds, every implementation. The matrices are NullVectorsOfConstructedMatrices': singular lanes
 // settle, regular ones (sigma_n = 0.5 among singular values 0.1-1) do not. Lanes 0-63 are
-// singular one in seven (every SIMD group mixed: the formed seed's residual of those lanes comes
-// from its compacted second pass), 64-95 all singular (computed in their groups), 96-119 one in
-// seven again, 120-149 all regular (skipped): three chunks of 64, the last one partial.
+// singular one in seven (every SIMD group mixed, fewer than a quarter settled: the formed seed's
+// residual of those lanes comes from its compacted second pass), 64-95 all singular (computed in
+// their groups), 96-119 one in seven again, 120-135 every other one (groups with a quarter of
+// their lanes settled or more, which compute it in place for every lane), 136-149 all regular
+// (skipped): three chunks of 64, the last one partial.
 TEST(BezoutNullVectorSeed, TheResidualOnlyWhereTheSeedSettledIsTheSameBitForBit) {
   constexpr double kSettled = 1e-3;
   constexpr std::size_t count = 150;
-  auto singular_lane = [](std::size_t l) { return (l < 120 && l % 7 == 0) || (l >= 64 && l < 96); };
+  auto singular_lane = [](std::size_t l) {
+    return (l < 120 && l % 7 == 0) || (l >= 64 && l < 96) || (l >= 120 && l < 136 && l % 2 == 0);
+  };
   std::mt19937_64 rng(55);
   for (const int n : {3, 5, 8, 9, 15, 20, 24, kBezoutNullVectorSeedMaxSize}) {
     const ConstructedPencil pencil = constructed_pencil(n, rng);
@@ -252,7 +255,7 @@ TEST(BezoutNullVectorSeed, TheResidualOnlyWhereTheSeedSettledIsTheSameBitForBit)
       Outputs every, settled_only;
       seed(1.0, every);
       seed(kSettled, settled_only);
-      std::size_t settled = 0, mixed_groups_settled = 0;
+      std::size_t settled = 0, mixed_groups_settled = 0, half_settled_groups_settled = 0;
       for (std::size_t l = 0; l < count; ++l) {
         ASSERT_TRUE(std::isfinite(every.residual[l])) << "lane " << l;
         EXPECT_EQ(std::memcmp(&every.defect[l], &settled_only.defect[l], sizeof(double)), 0) << "defect, lane " << l;
@@ -262,6 +265,7 @@ TEST(BezoutNullVectorSeed, TheResidualOnlyWhereTheSeedSettledIsTheSameBitForBit)
         if (every.defect[l] <= kSettled) {
           ++settled;
           mixed_groups_settled += l < 64;
+          half_settled_groups_settled += l >= 120 && l < 136;
           EXPECT_EQ(std::memcmp(&every.residual[l], &settled_only.residual[l], sizeof(double)), 0)
               << "residual, lane " << l << ": " << every.residual[l] << " and " << settled_only.residual[l];
         } else {
@@ -270,6 +274,7 @@ TEST(BezoutNullVectorSeed, TheResidualOnlyWhereTheSeedSettledIsTheSameBitForBit)
       }
       // The batch has what the test is for: settled lanes among unsettled ones, and the other way.
       EXPECT_GE(mixed_groups_settled, 8u);
+      EXPECT_GE(half_settled_groups_settled, 6u);
       EXPECT_GE(settled, 40u);
       EXPECT_LE(settled, 80u);
     }

@@ -82,18 +82,15 @@ HWY_INLINE wide::Vec<D> residual_norm(D d, const Matrix& matrix, const double* H
 // `settled_defect`, and write +inf for the others: a seed that has not settled is not used, and
 // its residual, which forms B a second time, is a fifth of the seed's work at n = 15. A group
 // whose lanes all settled computes it at once, one with none skips it, and one with both either
-// computes it for all (deferred_scale null; or n <= kResidualInPlaceMaxSize and a quarter of its
-// lanes settled or more) or leaves it to the caller for the settled lanes, writing their
-// 1 / ||B||_F to deferred_scale[l] (NaN for the other lanes, l < lanes) and returning true: a
-// group of mostly unsettled lanes (points off the curve) then does not run for the few settled
-// ones. The caller's
-// pass forms B and gathers z again, about twice a lane's share of the group's own pass at n = 8:
-// deferring groups half settled (half their points on the curve) cost 4% of the pipeline at
-// degrees 8 and 12, noise 1e-4; from n = 16 the gathering weighs less against the residual's n^2
-// and deferring every settled lane is 1% faster.
-// Up to this size a seed group with a quarter of its lanes settled or more computes their residual
-// in place; above it, a group with any lane unsettled leaves it to the caller (see below).
-inline constexpr int kResidualInPlaceMaxSize = 12;
+// computes it for all (deferred_scale null, or a quarter of its lanes settled or more) or leaves it
+// to the caller for the settled lanes, writing their 1 / ||B||_F to deferred_scale[l] (NaN for the
+// other lanes, l < lanes) and returning true: a group of mostly unsettled lanes (points off the
+// curve) then does not run for the few settled ones. The caller's pass forms B and gathers z
+// again, about twice a lane's share of the group's own pass at n = 8. So a group half settled (a
+// batch half on the curve, whose seed groups nearly all hold both kinds) computes in place at
+// every size: deferring such groups cost 4% of the pipeline at degrees 8 and 12, noise 1e-4, and
+// at degree 16, noise 1e-2, the caller's pass took 21 ns a point of a mixed batch, the seed in
+// all 74-90 ns a point against 59-81 in place (perf; docs/fast-path.md, "Mixed batches").
 
 template <int N, bool kGap, class Source, class D>
 HWY_NOINLINE bool null_vector_group(D d, std::size_t stride, std::size_t first, std::size_t lanes,
@@ -198,8 +195,8 @@ HWY_NOINLINE bool null_vector_group(D d, std::size_t stride, std::size_t first, 
     if (!hn::AllFalse(d, settled)) {
       // Some lanes settled: are they all (padding aside), or few enough to leave to the caller?
       const auto not_settled = lanes == L ? hn::Not(settled) : hn::AndNot(settled, hn::FirstN(d, lanes));
-      deferred = deferred_scale != nullptr && !hn::AllFalse(d, not_settled) &&
-                 (N > kResidualInPlaceMaxSize || 4 * hn::CountTrue(d, not_settled) > 3 * lanes);
+      deferred =
+          deferred_scale != nullptr && !hn::AllFalse(d, not_settled) && 4 * hn::CountTrue(d, not_settled) > 3 * lanes;
       if (deferred) {
         HWY_ALIGN double scale_lanes[L];
         hn::Store(hn::IfThenElse(settled, scale, hn::Set(d, std::numeric_limits<double>::quiet_NaN())), d,
