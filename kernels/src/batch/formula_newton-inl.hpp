@@ -48,7 +48,7 @@ HWY_INLINE std::uint64_t group_bits(D, const hn::Mask<D>& m) {
   using DN = typename D::D;
   const DN dn;
   constexpr std::size_t L = hw::MaxLanes(DN());
-  static_assert(L <= 8 && hn::MaxLanes(D()) <= 64);
+  static_assert(L <= 8 && hn::MaxLanes(D()) < 64);  // group_lane_bits shifts by the group's lanes
   std::uint64_t bits = 0;
   for (int g = 0; g < D::kVectors; ++g) {
     std::uint8_t byte = 0;

@@ -195,8 +195,7 @@ HWY_NOINLINE bool null_vector_group(D d, std::size_t stride, std::size_t first, 
     if (!hn::AllFalse(d, settled)) {
       // Some lanes settled: are they all (padding aside), or few enough to leave to the caller?
       const auto not_settled = lanes == L ? hn::Not(settled) : hn::AndNot(settled, hn::FirstN(d, lanes));
-      deferred =
-          deferred_scale != nullptr && !hn::AllFalse(d, not_settled) && 4 * hn::CountTrue(d, not_settled) > 3 * lanes;
+      deferred = deferred_scale != nullptr && 4 * hn::CountTrue(d, not_settled) > 3 * lanes;  // (some unsettled)
       if (deferred) {
         HWY_ALIGN double scale_lanes[L];
         hn::Store(hn::IfThenElse(settled, scale, hn::Set(d, std::numeric_limits<double>::quiet_NaN())), d,
