@@ -44,8 +44,9 @@ void seed_stored(std::size_t count, std::size_t stride, const StoredMatrices& so
 // The seed of every lane's Bezout matrix, formed from the coefficients (matrix_source-inl.hpp),
 // kChunk lanes at a time: first every group of the chunk, which leaves the residual of the
 // settled lanes of its groups where fewer than a quarter settled (null_vector_group); then those
-// lanes, compacted into groups of their own, B formed again for them. Each lane computes the same numbers in either:
-// the residual's operations are the same, from the z and 1 / ||B||_F its group stored.
+// lanes, compacted into groups of their own, B formed again for them. Each lane computes the same
+// numbers in either: the residual's operations are the same, from the z and 1 / ||B||_F its group
+// stored.
 template <int N, bool kBilinear>
 void seed_formed(std::size_t count, std::size_t stride, const BezoutMatrices<kBilinear>& source, double* z,
                  double* defect, double* residual, double settled_defect) {
